@@ -1,0 +1,74 @@
+// Ethernet frame port: the card's MAC with its two switch ports, L (left) and R (right).
+//
+// Contract:
+// - Frames are whole Ethernet II frames without preamble and FCS: destination MAC first, 14..1518 bytes
+//   (1518 leaves room for one 802.1Q tag).
+// - Receive() never blocks. It copies the oldest waiting frame into the caller's buffer and says which
+//   port it arrived on; kUnavailable means no frame is waiting. A frame that does not fit the buffer is
+//   dropped, counted as an rx error and reported as kOutOfRange (the next call returns the next frame).
+// - Transmit() never blocks and copies the frame before returning (the caller keeps its buffer).
+//   kFailedPrecondition: the port's link is down (frame dropped). kResourceExhausted: the transmit queue
+//   is full (frame dropped, as a MAC with a full ring would). kNotFound: no such port.
+// - Link() is cheap and may be called every loop pass; the event loop compares it with what lwIP knows.
+// - Counters are cumulative since start and feed the Ethernet Link object (0xF6) and the web page.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "base/status.h"
+
+namespace hal {
+
+inline constexpr std::size_t kMinFrameBytes = 14;
+inline constexpr std::size_t kMaxFrameBytes = 1518;
+inline constexpr std::size_t kMaxPorts = 2;
+
+enum class PortId : std::uint8_t { kLeft = 0, kRight = 1 };
+
+constexpr std::size_t PortIndex(PortId port) { return static_cast<std::size_t>(port); }
+constexpr char PortLetter(PortId port) { return port == PortId::kLeft ? 'L' : 'R'; }
+
+enum class LinkSpeed : std::uint8_t { kNone = 0, k10Mbps = 10, k100Mbps = 100 };
+
+struct LinkState {
+  bool up = false;
+  LinkSpeed speed = LinkSpeed::kNone;
+  bool full_duplex = false;
+  bool auto_negotiated = false;
+};
+
+struct PortCounters {
+  std::uint64_t rx_frames = 0;
+  std::uint64_t rx_octets = 0;
+  std::uint64_t rx_errors = 0;  // oversize, runt, or dropped because the receive queue was full
+  std::uint64_t tx_frames = 0;
+  std::uint64_t tx_octets = 0;
+  std::uint64_t tx_errors = 0;  // dropped: link down or transmit queue full
+};
+
+using MacAddress = std::array<std::uint8_t, 6>;
+
+struct ReceivedFrame {
+  std::size_t length = 0;
+  PortId port = PortId::kLeft;
+};
+
+class FramePort {
+ public:
+  virtual ~FramePort() = default;
+
+  // The card's own (factory) MAC address.
+  virtual MacAddress Mac() const = 0;
+  // Ports [0, PortCount()) exist; a card with one port populated reports 1.
+  virtual std::size_t PortCount() const = 0;
+  virtual LinkState Link(PortId port) const = 0;
+  virtual PortCounters Counters(PortId port) const = 0;
+
+  virtual base::Result<ReceivedFrame> Receive(std::span<std::uint8_t> buffer) = 0;
+  virtual base::Status Transmit(PortId port, std::span<const std::uint8_t> frame) = 0;
+};
+
+}  // namespace hal
