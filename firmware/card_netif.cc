@@ -1,0 +1,120 @@
+#include "card_netif.h"
+
+#include <array>
+#include <cstring>
+
+#include "lwip/etharp.h"
+#include "lwip/igmp.h"
+#include "lwip/pbuf.h"
+#include "netif/ethernet.h"
+
+namespace firmware {
+namespace {
+
+ip4_addr_t ToLwip(std::uint32_t host_order) {
+  ip4_addr_t address;
+  ip4_addr_set_u32(&address, lwip_htonl(host_order));
+  return address;
+}
+
+}  // namespace
+
+CardNetif::~CardNetif() {
+  if (added_) netif_remove(&netif_);
+}
+
+void CardNetif::Start(const Ipv4Config& config, const char* hostname) {
+  const ip4_addr_t address = ToLwip(config.address);
+  const ip4_addr_t netmask = ToLwip(config.netmask);
+  const ip4_addr_t gateway = ToLwip(config.gateway);
+  netif_add(&netif_, &address, &netmask, &gateway, this, &CardNetif::InitCallback, ethernet_input);
+  added_ = true;
+  netif_set_hostname(&netif_, hostname);
+  netif_set_default(&netif_);
+  netif_set_up(&netif_);
+  SyncLinkState();
+}
+
+err_t CardNetif::InitCallback(netif* nif) {
+  auto* self = static_cast<CardNetif*>(nif->state);
+  const hal::MacAddress mac = self->port_.Mac();
+  nif->name[0] = 'e';
+  nif->name[1] = 'n';
+  nif->mtu = 1500;
+  nif->hwaddr_len = ETH_HWADDR_LEN;
+  std::memcpy(nif->hwaddr, mac.data(), mac.size());
+  nif->flags = NETIF_FLAG_BROADCAST | NETIF_FLAG_ETHARP | NETIF_FLAG_ETHERNET | NETIF_FLAG_IGMP;
+  nif->output = etharp_output;
+  nif->linkoutput = &CardNetif::LinkOutputCallback;
+  return ERR_OK;
+}
+
+err_t CardNetif::LinkOutputCallback(netif* nif, pbuf* p) {
+  return static_cast<CardNetif*>(nif->state)->LinkOutput(p);
+}
+
+err_t CardNetif::LinkOutput(pbuf* p) {
+  std::array<std::uint8_t, hal::kMaxFrameBytes> frame;
+  if (p->tot_len > frame.size()) {
+    ++counters_.tx_dropped;
+    return ERR_BUF;
+  }
+  const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
+  const std::span<const std::uint8_t> bytes(frame.data(), length);
+  bool sent = false;
+  for (std::size_t i = 0; i < port_.PortCount(); ++i) {
+    const auto id = static_cast<hal::PortId>(i);
+    if (port_.Link(id).up && port_.Transmit(id, bytes).ok()) sent = true;
+  }
+  if (!sent) {
+    ++counters_.tx_dropped;
+    // The frame is lost like on a cable with no link; TCP retransmits, UDP does not care.
+    return ERR_OK;
+  }
+  ++counters_.tx_frames;
+  return ERR_OK;
+}
+
+std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
+  std::array<std::uint8_t, hal::kMaxFrameBytes> frame;
+  std::size_t taken = 0;
+  while (taken < max_frames) {
+    const base::Result<hal::ReceivedFrame> received = port_.Receive(frame);
+    if (received.status().code() == base::StatusCode::kUnavailable) break;
+    ++taken;
+    if (!received.ok()) {
+      ++counters_.rx_port_errors;
+      continue;
+    }
+    const auto length = static_cast<u16_t>(received->length);
+    pbuf* p = pbuf_alloc(PBUF_RAW, length, PBUF_POOL);
+    if (p == nullptr) {
+      ++counters_.rx_dropped_no_pbuf;
+      continue;
+    }
+    pbuf_take(p, frame.data(), length);
+    ++counters_.rx_frames;
+    // netif_input_fn: "!= ERR_OK is the packet was NOT handled, in this case, the caller has to free
+    // the pbuf".
+    if (netif_.input(p, &netif_) != ERR_OK) pbuf_free(p);
+  }
+  return taken;
+}
+
+bool CardNetif::link_up() const { return netif_is_link_up(&netif_); }
+
+bool CardNetif::SyncLinkState() {
+  bool any_up = false;
+  for (std::size_t i = 0; i < port_.PortCount(); ++i) {
+    any_up = any_up || port_.Link(static_cast<hal::PortId>(i)).up;
+  }
+  if (any_up == link_up()) return false;
+  if (any_up) {
+    netif_set_link_up(&netif_);
+  } else {
+    netif_set_link_down(&netif_);
+  }
+  return true;
+}
+
+}  // namespace firmware

@@ -1,0 +1,68 @@
+// The card's one IP interface, bound to lwIP, on top of the two-port frame port.
+//
+// The card has one MAC and one IP address behind a two-port switch (L, R). Receive: frames from either
+// port go into lwIP through netif->input. Transmit: lwIP's frames go out on every port whose link is
+// up (a frame for an unknown destination floods, as a switch does; per-port MAC learning is part of
+// the switch work). Link: the netif's link is up while at least one port has link.
+//
+// Buffer ownership: a received frame is copied into a PBUF_POOL chain; if lwIP's input function does
+// not take it (returns != ERR_OK) the pbuf is freed here. Outgoing pbufs belong to lwIP: linkoutput
+// only copies them into the port.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "hal/frame_port.h"
+#include "lwip/netif.h"
+
+namespace firmware {
+
+struct Ipv4Config {
+  std::uint32_t address = 0;  // host byte order, e.g. 0x0A00020F for 10.0.2.15
+  std::uint32_t netmask = 0;
+  std::uint32_t gateway = 0;
+};
+
+struct NetifCounters {
+  std::uint64_t rx_frames = 0;
+  std::uint64_t rx_dropped_no_pbuf = 0;  // PBUF_POOL empty: frame dropped as a MAC with a full ring would
+  std::uint64_t rx_port_errors = 0;      // the port reported an oversize/runt frame
+  std::uint64_t tx_frames = 0;           // frames handed to at least one port
+  std::uint64_t tx_dropped = 0;          // no port with link, or every port refused the frame
+};
+
+class CardNetif {
+ public:
+  explicit CardNetif(hal::FramePort& port) : port_(port) {}
+  ~CardNetif();
+  CardNetif(const CardNetif&) = delete;
+  CardNetif& operator=(const CardNetif&) = delete;
+
+  // Adds the netif to lwIP (lwip_init must have run) and brings it administratively up.
+  void Start(const Ipv4Config& config, const char* hostname);
+
+  // Moves at most `max_frames` received frames into lwIP; returns how many were taken from the port.
+  // Bounded so that a flood cannot starve timers and I/O production.
+  std::size_t PumpReceive(std::size_t max_frames);
+
+  // Brings the lwIP link state in line with the ports'. Returns true when it changed.
+  bool SyncLinkState();
+
+  bool link_up() const;
+  const NetifCounters& counters() const { return counters_; }
+  netif& lwip_netif() { return netif_; }
+  hal::FramePort& port() { return port_; }
+
+ private:
+  static err_t InitCallback(netif* nif);
+  static err_t LinkOutputCallback(netif* nif, pbuf* p);
+  err_t LinkOutput(pbuf* p);
+
+  hal::FramePort& port_;
+  netif netif_{};
+  bool added_ = false;
+  NetifCounters counters_;
+};
+
+}  // namespace firmware

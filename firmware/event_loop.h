@@ -1,0 +1,70 @@
+// The card's one event loop: single-threaded, never blocks on a peer, never busy-waits.
+//
+// One pass (RunOnce):
+//   1. bring lwIP's link state in line with the ports (a cable pulled or plugged);
+//   2. move up to kMaxFramesPerPass received frames into lwIP (bounded, so a flood cannot starve
+//      timers or I/O production);
+//   3. run lwIP's due timers (sys_check_timeouts);
+//   4. let every service do what is due at `now` (protocol timers, RPI production, drive link);
+//   5. sleep in the Waiter until the earliest deadline of lwIP and the services, or until I/O.
+// If step 2 stopped at its bound, the pass does not sleep: more frames are waiting.
+//
+// Deadlines are absolute microseconds on hal::Clock. A service that produces periodically computes its
+// next deadline from its previous deadline, not from `now`, so it keeps its base time and does not drift.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "base/status.h"
+#include "card_netif.h"
+#include "hal/clock.h"
+#include "hal/waiter.h"
+
+namespace firmware {
+
+class Service {
+ public:
+  virtual ~Service() = default;
+  // Does whatever is due at `now`. Called once per pass, whatever woke the loop.
+  virtual void Poll(hal::Micros now) = 0;
+  // The next instant at which Poll() must run even if no I/O arrives; hal::kNever for none.
+  virtual hal::Micros NextDeadline() const = 0;
+};
+
+struct LoopStats {
+  std::uint64_t passes = 0;
+  std::uint64_t frames_in = 0;
+  std::uint64_t bounded_passes = 0;  // passes that hit kMaxFramesPerPass and skipped the sleep
+  std::uint64_t link_changes = 0;
+};
+
+class EventLoop {
+ public:
+  static constexpr std::size_t kMaxServices = 16;
+  static constexpr std::size_t kMaxFramesPerPass = 32;
+
+  EventLoop(const hal::Clock& clock, hal::Waiter& waiter, CardNetif& netif)
+      : clock_(clock), waiter_(waiter), netif_(netif) {}
+
+  // kResourceExhausted when kMaxServices are registered already.
+  base::Status AddService(Service& service);
+  void RunOnce();
+  // The deadline the last pass slept towards (kNever: it waited for I/O only). For tests.
+  hal::Micros last_deadline() const { return last_deadline_; }
+  const LoopStats& stats() const { return stats_; }
+
+ private:
+  hal::Micros NextDeadline(hal::Micros now) const;
+
+  const hal::Clock& clock_;
+  hal::Waiter& waiter_;
+  CardNetif& netif_;
+  std::array<Service*, kMaxServices> services_{};
+  std::size_t service_count_ = 0;
+  hal::Micros last_deadline_ = hal::kNever;
+  LoopStats stats_;
+};
+
+}  // namespace firmware

@@ -1,0 +1,34 @@
+// The control socket's commands: what the card reports (stats, LEDs) and what a test may do to it
+// (unplug a cable, power-cycle). Kept apart from the assembly in host_card.cc.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "card_netif.h"
+#include "event_loop.h"
+#include "hal/reset.h"
+#include "logging_leds.h"
+#include "poll_waiter.h"
+
+namespace host {
+
+struct CardReport {
+  firmware::CardNetif& netif;
+  firmware::EventLoop& loop;
+  hal::host::LoggingLeds& leds;
+  hal::host::PollWaiter& waiter;
+};
+
+using SetPlugged = std::function<base::Status(hal::PortId, bool)>;
+
+// Appends `name=value` lines: event loop, netif, per-port counters, every lwIP protocol and pool
+// counter. Pool lines read lwip.memp.<POOL>.used/max/avail/err.
+void AppendStats(const CardReport& report, std::string& out);
+
+// Runs one control command and appends its answer (data lines, then "ok" or "error <reason>").
+void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
+                          const SetPlugged& set_plugged, hal::ResetControl& reset);
+
+}  // namespace host

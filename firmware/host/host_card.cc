@@ -1,0 +1,190 @@
+#include "host_card.h"
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+#include "capturing_frame_port.h"
+#include "card_netif.h"
+#include "card_report.h"
+#include "control_server.h"
+#include "event_loop.h"
+#include "file_nv_store.h"
+#include "host_clock.h"
+#include "host_random.h"
+#include "link_leds.h"
+#include "logging_leds.h"
+#include "lwip/init.h"
+#include "lwip_port.h"
+#include "pcap_writer.h"
+#include "poll_waiter.h"
+#include "signal_source.h"
+#include "slirp_frame_port.h"
+#include "tap_frame_port.h"
+
+namespace host {
+namespace {
+
+// The card's own NV records. The MAC is factory data: a real card has it burnt in; the host card
+// makes up a locally administered one on first start and keeps it in the state dir.
+constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
+
+hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
+  hal::MacAddress mac{};
+  const base::Result<std::size_t> read = store.Read(kNvFactoryMac, mac);
+  if (read.ok() && *read == mac.size()) return mac;
+  random.Fill(mac);
+  mac[0] = static_cast<std::uint8_t>((mac[0] & 0xFC) | 0x02);  // unicast, locally administered
+  store.Write(kNvFactoryMac, mac).IgnoreError();  // a read-only state dir still gives a working card
+  return mac;
+}
+
+std::string FormatMac(const hal::MacAddress& mac) {
+  char text[18];
+  std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", mac[0], mac[1], mac[2], mac[3],
+                mac[4], mac[5]);
+  return text;
+}
+
+class ResetRequest final : public hal::ResetControl {
+ public:
+  void RequestReset(hal::ResetKind kind) override { kind_ = kind; }
+  const std::optional<hal::ResetKind>& pending() const { return kind_; }
+
+ private:
+  std::optional<hal::ResetKind> kind_;
+};
+
+// The network port as built from --net, with what the control socket and the ready line need.
+struct NetworkPort {
+  std::unique_ptr<hal::FramePort> device;
+  hal::host::PollSource* poll_source = nullptr;
+  std::function<base::Status(hal::PortId, bool)> set_plugged;
+  std::string endpoints;  // "modbus=... enip=... io=... http=..."
+};
+
+std::string TapEndpoints(const std::string& ip) {
+  return "modbus=" + ip + ":502 enip=" + ip + ":44818 enip-udp=" + ip + ":44818 io=" + ip +
+         ":2222 http=" + ip + ":80";
+}
+
+std::string SlirpEndpoints(const hal::host::SlirpFramePort& port) {
+  std::string tcp44818, udp44818, modbus, io, http;
+  for (const hal::host::ActiveForward& f : port.ActiveForwards()) {
+    const std::string endpoint = f.host_address + ":" + std::to_string(f.host_port);
+    const bool tcp = f.transport == hal::host::Transport::kTcp;
+    if (f.guest_port == 502) modbus = endpoint;
+    if (f.guest_port == 44818) (tcp ? tcp44818 : udp44818) = endpoint;
+    if (f.guest_port == 2222) io = endpoint;
+    if (f.guest_port == 80) http = endpoint;
+  }
+  return "modbus=" + modbus + " enip=" + tcp44818 + " enip-udp=" + udp44818 + " io=" + io +
+         " http=" + http;
+}
+
+bool OpenNetworkPort(const HostOptions& options, const hal::MacAddress& mac, const hal::Clock& clock,
+                     NetworkPort& out, std::string& error) {
+  if (options.net == NetKind::kTap) {
+    auto tap = hal::host::TapFramePort::Open(options.tap_interfaces, mac, &error);
+    if (!tap.ok()) return false;
+    hal::host::TapFramePort* raw = tap.value().get();
+    out.poll_source = raw;
+    out.set_plugged = [raw](hal::PortId p, bool plugged) { return raw->SetPlugged(p, plugged); };
+    out.endpoints = TapEndpoints(FormatIpv4(options.ip));
+    out.device = std::move(tap.value());
+    return true;
+  }
+  hal::host::SlirpPortConfig config;
+  config.mac = mac;
+  config.guest_address = FormatIpv4(options.ip);
+  config.netmask = FormatIpv4(options.netmask);
+  config.network = FormatIpv4(options.ip & options.netmask);
+  config.gateway = FormatIpv4(options.gateway);
+  config.host_address = options.host_address;
+  auto slirp = hal::host::SlirpFramePort::Create(config, clock, &error);
+  if (!slirp.ok()) return false;
+  hal::host::SlirpFramePort* raw = slirp.value().get();
+  out.poll_source = raw;
+  out.set_plugged = [raw](hal::PortId p, bool plugged) { return raw->SetPlugged(p, plugged); };
+  out.endpoints = SlirpEndpoints(*raw);
+  out.device = std::move(slirp.value());
+  return true;
+}
+
+}  // namespace
+
+CardExit RunHostCard(const HostOptions& options, std::string& error) {
+  hal::host::HostClock clock;
+  hal::host::HostRandom random;
+  hal::host::PollWaiter waiter(clock);
+
+  auto store = hal::host::FileNvStore::Open(options.state_dir + "/card", &error);
+  if (!store.ok()) return CardExit::kFailed;
+  const hal::MacAddress mac = LoadOrCreateMac(*store.value(), random);
+
+  NetworkPort network;
+  if (!OpenNetworkPort(options, mac, clock, network, error)) return CardExit::kFailed;
+  waiter.Register(*network.poll_source);
+
+  // --pcap: every frame in and out, captured at the port boundary (what a tap on the cable would see).
+  std::unique_ptr<hal::host::PcapWriter> pcap;
+  std::unique_ptr<hal::host::CapturingFramePort> capture;
+  hal::FramePort* port = network.device.get();
+  if (!options.pcap_path.empty()) {
+    auto opened = hal::host::PcapWriter::Open(options.pcap_path, &error);
+    if (!opened.ok()) return CardExit::kFailed;
+    pcap = std::move(opened.value());
+    capture = std::make_unique<hal::host::CapturingFramePort>(*port, *pcap);
+    port = capture.get();
+  }
+
+  hal::host::LoggingLeds leds(clock, hal::host::LoggingLeds::FileSink(stderr));
+  ResetRequest reset;
+
+  firmware::BindLwipPlatform(clock, random);
+  lwip_init();
+  firmware::CardNetif netif(*port);
+  const std::string hostname = "ipe002z";
+  netif.Start({options.ip, options.netmask, options.gateway}, hostname.c_str());
+
+  firmware::EventLoop loop(clock, waiter, netif);
+  firmware::LinkLeds link_leds(*port, leds);
+  loop.AddService(link_leds).IgnoreError();
+
+  SignalSource signals;
+  waiter.Register(signals);
+
+  CardReport report{netif, loop, leds, waiter};
+  std::unique_ptr<ControlServer> control;
+  if (!options.sim_control_path.empty()) {
+    control = std::make_unique<ControlServer>(
+        options.sim_control_path, [&](std::string_view command, std::string& reply) {
+          HandleControlCommand(command, reply, report, network.set_plugged, reset);
+        });
+    if (!control->Start(error)) return CardExit::kFailed;
+    waiter.Register(*control);
+  }
+
+  bool ready_printed = false;
+  while (!signals.stop_requested() && !reset.pending().has_value()) {
+    loop.RunOnce();
+    if (!ready_printed && netif.link_up()) {
+      std::printf("ready ip=%s mac=%s net=%s %s control=%s state=%s\n", FormatIpv4(options.ip).c_str(),
+                  FormatMac(mac).c_str(), options.net == NetKind::kTap ? "tap" : "loopback",
+                  network.endpoints.c_str(),
+                  options.sim_control_path.empty() ? "-" : options.sim_control_path.c_str(),
+                  options.state_dir.c_str());
+      std::fflush(stdout);
+      ready_printed = true;
+    }
+  }
+  if (reset.pending().has_value()) {
+    // Let the control socket deliver its answer before the process image is replaced.
+    waiter.WaitUntil(clock.NowMicros());
+    return CardExit::kRestart;
+  }
+  return CardExit::kStopped;
+}
+
+}  // namespace host

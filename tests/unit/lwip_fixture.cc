@@ -1,0 +1,22 @@
+#include "lwip_fixture.h"
+
+#include "lwip/init.h"
+#include "lwip_port.h"
+
+namespace hal::test {
+
+FakeClock& LwipTestClock() {
+  static FakeClock clock(1'000'000);
+  return clock;
+}
+
+void EnsureLwipInitialised() {
+  static bool done = false;
+  if (done) return;
+  static CountingRandom random;
+  firmware::BindLwipPlatform(LwipTestClock(), random);
+  lwip_init();
+  done = true;
+}
+
+}  // namespace hal::test
