@@ -13,7 +13,6 @@ using hal::PortId;
 using hal::test::FakeFramePort;
 
 constexpr hal::MacAddress kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
-constexpr hal::MacAddress kPeerMac = {0x02, 0xAA, 0xBB, 0xCC, 0xDD, 0xEE};
 
 // ARP request from 192.168.1.30 (peer) asking for 192.168.1.12 (the card).
 std::vector<std::uint8_t> ArpRequestForCard() {
