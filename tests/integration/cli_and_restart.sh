@@ -3,7 +3,8 @@
 # state dir (same MAC) and prints a new ready line.
 source "$(dirname "$0")/lib.sh"
 
-"$FIRMWARE" --help | grep -q -- "--net loopback | tap:IF" || fail "--help does not print the usage"
+usage=$("$FIRMWARE" --help) || fail "--help exited non-zero"
+grep -q -- "--net loopback | tap:IF" <<<"$usage" || fail "--help does not print the usage"
 for bad in "--bogus" "--net eth0" "--ip 10.0.0.1" "--ip 300.1.1.1/24" "--model vf-x" "--net tap:t0" \
            "--param c500" "--param =1" "--param c500=abc" "--host-addr 10.0.0.1" "--state-dir"; do
   set +e
@@ -25,7 +26,7 @@ wait_for 10 ready_lines || { cat "$CARD_LOG"; fail "no second ready line after p
 second=$(grep '^ready ' "$CARD_LOG" | sed -n 2p)
 grep -q " mac=$mac " <<<"$second" || fail "MAC changed across the restart: $second"
 kill -0 "$CARD_PID" || fail "the card process did not survive its restart"
-"$CTL" "$CARD_CONTROL" stats | grep -q "^netif.link=up$" || fail "control socket dead after restart"
+[ "$(stat_of netif.link)" = up ] || fail "control socket dead after restart"
 out=$("$CTL" "$CARD_CONTROL" "frobnicate" || true)
 [ "$out" = "error unknown command (try 'help')" ] || fail "unknown command answer: '$out'"
 pass "power-cycle: same process id, same MAC $mac, control socket back"

@@ -10,7 +10,9 @@ pass() { echo "ok: $*"; }
 
 # stat_of NAME: one counter from the card's 'stats' answer.
 stat_of() {
-  "$CTL" "$CARD_CONTROL" stats | sed -n "s/^$1=//p"
+  local answer
+  answer=$("$CTL" "$CARD_CONTROL" stats) || return 1
+  sed -n "s/^$1=//p" <<<"$answer"
 }
 
 # wait_for SECONDS COMMAND...: retry COMMAND every 0.1 s until it succeeds or time runs out.

@@ -9,7 +9,8 @@ ping -c 1 -W 2 "$CARD_IP" >/dev/null || fail "no ping before unplugging"
 "$CTL" "$CARD_CONTROL" "link L down" >/dev/null || fail "link L down refused"
 wait_for 3 test "$(stat_of netif.link)" = down || fail "lwIP netif did not go down"
 [ "$(stat_of port.L.link)" = down ] || fail "port L still reports link"
-"$CTL" "$CARD_CONTROL" leds | grep -q "LNK-L=off" || fail "LNK-L not off with the cable out"
+leds=$("$CTL" "$CARD_CONTROL" leds)
+grep -q "LNK-L=off" <<<"$leds" || fail "LNK-L not off with the cable out: $leds"
 pass "link down: netif down, port L down, LNK-L off"
 
 ip neigh flush dev "$TAP_L"
