@@ -1,7 +1,6 @@
 #include "drive_link/link_client.h"
 
 #include <algorithm>
-#include <chrono>
 
 namespace drive_link {
 namespace {
@@ -9,14 +8,6 @@ namespace {
 // A partially written frame is retried this often while the port's transmit buffer is full (the
 // Waiter does not report a serial port becoming writable).
 constexpr hal::Micros kWriteRetryInterval = hal::kMicrosPerMilli;
-// Reads per Poll, kReadChunk bytes each: a bound so a babbling line cannot hold the loop. 256 bytes is
-// over 130 ms of traffic at 19200 baud, far more than one exchange.
-constexpr std::size_t kReadChunk = 32;
-constexpr std::size_t kMaxReadsPerPoll = 8;
-
-constexpr hal::Micros kFrameTimeoutMicros = static_cast<hal::Micros>(
-    std::chrono::duration_cast<std::chrono::microseconds>(wire::kFrameTimeout).count());
-
 wire::Command CommandOf(TransactionKind kind) {
   switch (kind) {
     case TransactionKind::kWrite:
@@ -113,7 +104,6 @@ base::Status LinkClient::Start(hal::Micros now) {
   state_ = LinkState::kStarting;
   quiet_until_ = now + config_.startup_silence;
   next_send_at_ = now;
-  last_poll_ = now;
   return base::OkStatus();
 }
 
@@ -178,9 +168,7 @@ hal::Micros LinkClient::AttemptBudget() const {
 
 void LinkClient::Poll(hal::Micros now) {
   if (!started_) return;
-  last_poll_ = now;
-  Receive(now);
-  if (framer_.frame_in_progress() && now - frame_started_at_ >= kFrameTimeoutMicros) framer_.GapElapsed();
+  counters_.rx_errors += reader_.Poll(now, *this).damaged_bytes;
   if ((phase_ == Phase::kSending || phase_ == Phase::kAwaiting) && now >= deadline_) AttemptTimedOut(now);
   if (phase_ == Phase::kIdle) LoadNext(now);
   if (phase_ == Phase::kReady && now >= SendableAt()) {
@@ -197,9 +185,7 @@ void LinkClient::Poll(hal::Micros now) {
 
 hal::Micros LinkClient::NextDeadline() const {
   if (!started_) return hal::kNever;
-  if (rx_more_) return last_poll_;
-  hal::Micros deadline = hal::kNever;
-  if (framer_.frame_in_progress()) deadline = frame_started_at_ + kFrameTimeoutMicros;
+  hal::Micros deadline = reader_.NextDeadline();
   switch (phase_) {
     case Phase::kIdle:
       if (queue_count_ > 0) {
@@ -221,37 +207,6 @@ hal::Micros LinkClient::NextDeadline() const {
   return deadline;
 }
 
-void LinkClient::Receive(hal::Micros now) {
-  rx_more_ = false;
-  std::array<std::uint8_t, kReadChunk> buffer{};
-  for (std::size_t i = 0; i < kMaxReadsPerPoll; ++i) {
-    const base::Result<std::size_t> read = port_.Read(buffer);
-    if (!read.ok()) {
-      if (read.status().code() != base::StatusCode::kDataLoss) return;
-      // A byte was damaged and discarded: the frame it belonged to cannot be valid any more.
-      ++counters_.rx_errors;
-      if (framer_.frame_in_progress()) framer_.GapElapsed();
-      continue;
-    }
-    if (*read == 0) return;
-    std::span<const std::uint8_t> bytes =
-        std::span<const std::uint8_t>(buffer).first(std::min(*read, buffer.size()));
-    while (!bytes.empty()) {
-      const bool was_in_progress = framer_.frame_in_progress();
-      const std::uint32_t dropped = framer_.counters().dropped_frames;
-      const wire::StreamFramer::FeedResult fed = framer_.Feed(bytes);
-      if (fed.consumed == 0) break;
-      bytes = bytes.subspan(fed.consumed);
-      if (fed.frame_ready) HandleFrame(framer_.frame(), now);
-      // A frame started (or restarted) in these bytes: its receive timer runs from now.
-      if (framer_.frame_in_progress() && (!was_in_progress || dropped != framer_.counters().dropped_frames)) {
-        frame_started_at_ = now;
-      }
-    }
-  }
-  rx_more_ = true;
-}
-
 bool LinkClient::Matches(const wire::DecodedReply& decoded) const {
   const Transaction& transaction = Current().transaction;
   switch (decoded.kind) {
@@ -270,7 +225,7 @@ bool LinkClient::Matches(const wire::DecodedReply& decoded) const {
   return false;
 }
 
-void LinkClient::HandleFrame(std::span<const std::uint8_t> frame, hal::Micros now) {
+void LinkClient::OnFrame(std::span<const std::uint8_t> frame, hal::Micros now) {
   const wire::DecodedReply decoded = wire::DecodeReply(frame);
   if (!decoded.ok()) {
     ++counters_.garbled_frames;
@@ -327,7 +282,7 @@ void LinkClient::EndAttempt(hal::Micros now) {
 
 void LinkClient::AttemptTimedOut(hal::Micros now) {
   // Whatever part of a reply has arrived belongs to this attempt; the next one starts clean.
-  if (framer_.frame_in_progress()) framer_.GapElapsed();
+  reader_.DropPartialFrame();
   EndAttempt(now);
   Completion completion;
   if (Current().transaction.expect_no_reply || deadline_ <= quiet_until_) {

@@ -15,6 +15,7 @@
 #include <span>
 
 #include "base/status.h"
+#include "drive_link/wire/serial_frame_reader.h"
 #include "drive_link/wire/toshiba_frame.h"
 #include "hal/clock.h"
 #include "hal/serial_port.h"
@@ -200,7 +201,7 @@ struct LinkCounters {
   std::uint32_t faults = 0;               // transitions into kFault (e-23 declared)
 };
 
-class LinkClient {
+class LinkClient : private wire::FrameSink {
  public:
   // `observer` may be null (completions are then only counted). Both references must outlive the client.
   LinkClient(hal::SerialPort& port, const LinkConfig& config, LinkObserver* observer);
@@ -236,7 +237,7 @@ class LinkClient {
   // Requests waiting or on the wire.
   std::size_t queued() const { return queue_count_; }
   const LinkCounters& counters() const { return counters_; }
-  const wire::FramerCounters& framer_counters() const { return framer_.counters(); }
+  const wire::FramerCounters& framer_counters() const { return reader_.framer_counters(); }
   const LinkConfig& config() const { return config_; }
 
  private:
@@ -252,8 +253,7 @@ class LinkClient {
   };
 
   base::Status Encode(const Transaction& transaction, Entry& entry) const;
-  void Receive(hal::Micros now);
-  void HandleFrame(std::span<const std::uint8_t> frame, hal::Micros now);
+  void OnFrame(std::span<const std::uint8_t> frame, hal::Micros now) override;
   bool Matches(const wire::DecodedReply& reply) const;
   void LoadNext(hal::Micros now);
   void Send(hal::Micros now);
@@ -269,7 +269,7 @@ class LinkClient {
   hal::SerialPort& port_;
   LinkConfig config_;
   LinkObserver* observer_;
-  wire::StreamFramer framer_{wire::Direction::kReplies};
+  wire::SerialFrameReader reader_{port_, wire::Direction::kReplies};
 
   bool started_ = false;
   LinkState state_ = LinkState::kStarting;
@@ -293,9 +293,6 @@ class LinkClient {
   hal::Micros next_send_at_ = 0;         // end of the inter-frame gap
   hal::Micros quiet_until_ = 0;          // nothing is sent before this
   hal::Micros next_probe_at_ = hal::kNever;
-  hal::Micros frame_started_at_ = 0;     // receive timer of a partial reply frame
-  bool rx_more_ = false;                 // the last Poll stopped reading at its bound
-  hal::Micros last_poll_ = 0;
 
   LinkCounters counters_;
 };

@@ -1,7 +1,6 @@
 #include "inverter_sim/protocol_server.h"
 
 #include <algorithm>
-#include <chrono>
 #include <optional>
 #include <span>
 
@@ -11,8 +10,6 @@ namespace wire = drive_link::wire;
 
 namespace {
 
-constexpr hal::Micros kFrameTimeoutMicros =
-    static_cast<hal::Micros>(std::chrono::duration_cast<std::chrono::microseconds>(wire::kFrameTimeout).count());
 // A refused write (transmit buffer full) is retried this much later: bounded, never a spin.
 constexpr hal::Micros kWriteRetryInterval = hal::kMicrosPerMilli;
 
@@ -146,20 +143,15 @@ bool InverterProtocolServer::TakeFault(Fault::Kind kind, hal::Micros* delay_us) 
 }
 
 void InverterProtocolServer::Poll(hal::Micros now) {
-  last_poll_ = now;
   model_.Advance(now);
-  Receive(now);
-  if (framer_.frame_in_progress() && now - frame_started_at_ >= kFrameTimeoutMicros) {
-    framer_.GapElapsed();
-    ++counters_.timeouts;
-  }
+  const wire::ReadOutcome read = reader_.Poll(now, *this);
+  counters_.rx_errors += read.damaged_bytes;
+  if (read.partial_frame_timed_out) ++counters_.timeouts;
   Transmit(now);
 }
 
 hal::Micros InverterProtocolServer::NextDeadline() const {
-  if (rx_more_) return last_poll_;
-  hal::Micros deadline = kNever;
-  if (framer_.frame_in_progress()) deadline = frame_started_at_ + kFrameTimeoutMicros;
+  hal::Micros deadline = reader_.NextDeadline();
   if (write_retry_at_ != kNever) {
     deadline = std::min(deadline, write_retry_at_);  // the line refused bytes: retry later, never spin
   } else if (!pending_.empty()) {
@@ -168,37 +160,7 @@ hal::Micros InverterProtocolServer::NextDeadline() const {
   return deadline;
 }
 
-void InverterProtocolServer::Receive(hal::Micros now) {
-  rx_more_ = false;
-  std::array<std::uint8_t, kReadChunk> buffer{};
-  for (std::size_t i = 0; i < kMaxReadsPerPoll; ++i) {
-    const base::Result<std::size_t> read = line_.Read(buffer);
-    if (!read.ok()) {
-      if (read.status().code() != base::StatusCode::kDataLoss) return;
-      // A damaged byte was discarded (parity, framing): its frame is a receiving error, never answered.
-      ++counters_.rx_errors;
-      if (framer_.frame_in_progress()) framer_.GapElapsed();
-      continue;
-    }
-    if (*read == 0) return;
-    std::span<const std::uint8_t> bytes = std::span<const std::uint8_t>(buffer).first(std::min(*read, buffer.size()));
-    while (!bytes.empty()) {
-      const bool was_in_progress = framer_.frame_in_progress();
-      const std::uint32_t dropped = framer_.counters().dropped_frames;
-      const wire::StreamFramer::FeedResult fed = framer_.Feed(bytes);
-      if (fed.consumed == 0) break;
-      bytes = bytes.subspan(fed.consumed);
-      if (fed.frame_ready) HandleFrame(framer_.frame(), now);
-      // A frame started (or restarted after a drop) in these bytes: its receive timer runs from now.
-      if (framer_.frame_in_progress() && (!was_in_progress || dropped != framer_.counters().dropped_frames)) {
-        frame_started_at_ = now;
-      }
-    }
-  }
-  rx_more_ = true;  // the line may hold more: NextDeadline asks for another pass at once
-}
-
-void InverterProtocolServer::HandleFrame(std::span<const std::uint8_t> frame, hal::Micros now) {
+void InverterProtocolServer::OnFrame(std::span<const std::uint8_t> frame, hal::Micros now) {
   ++counters_.requests;
   const wire::DecodedRequest decoded = wire::DecodeRequest(frame);
   const bool block = decoded.kind == wire::RequestKind::kBlock;

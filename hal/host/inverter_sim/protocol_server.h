@@ -19,6 +19,7 @@
 #include <deque>
 #include <vector>
 
+#include "drive_link/wire/serial_frame_reader.h"
 #include "drive_link/wire/toshiba_frame.h"
 #include "hal/clock.h"
 #include "hal/serial_port.h"
@@ -83,7 +84,7 @@ struct ServerCounters {
   std::uint64_t timeouts = 0;     // partial frames dropped by the kFrameTimeout receive timer
 };
 
-class InverterProtocolServer {
+class InverterProtocolServer : private drive_link::wire::FrameSink {
  public:
   InverterProtocolServer(InverterModel& model, hal::SerialPort& line, const hal::Clock& clock,
                          ServerConfig config = {});
@@ -100,7 +101,7 @@ class InverterProtocolServer {
   std::size_t active_faults() const { return faults_.size(); }
 
   const ServerCounters& counters() const { return counters_; }
-  const drive_link::wire::FramerCounters& framer_counters() const { return framer_.counters(); }
+  const drive_link::wire::FramerCounters& framer_counters() const { return reader_.framer_counters(); }
   const ServerConfig& config() const { return config_; }
   const hal::Clock& clock() const { return clock_; }
   // The inverter number in force (the configured one or F802).
@@ -111,9 +112,7 @@ class InverterProtocolServer {
   hal::Micros ProcessingDelay() const;
   std::size_t pending_replies() const { return pending_.size(); }
 
-  // Limits: bytes read per Poll (then NextDeadline asks for another pass at once), replies queued.
-  static constexpr std::size_t kReadChunk = 64;
-  static constexpr std::size_t kMaxReadsPerPoll = 8;
+  // Replies queued at most (bytes read per Poll are bounded by drive_link::wire::SerialFrameReader).
   static constexpr std::size_t kMaxPendingReplies = 16;
 
  private:
@@ -128,8 +127,7 @@ class InverterProtocolServer {
     std::uint32_t remaining = 0;  // 0 with kUntilCleared: never runs out
   };
 
-  void Receive(hal::Micros now);
-  void HandleFrame(std::span<const std::uint8_t> frame, hal::Micros now);
+  void OnFrame(std::span<const std::uint8_t> frame, hal::Micros now) override;
   void HandleRegister(const drive_link::wire::Request& request, drive_link::wire::Addressing addressing,
                       std::uint8_t own, hal::Micros now);
   void HandleBlock(const drive_link::wire::BlockRequest& request, drive_link::wire::Addressing addressing,
@@ -147,10 +145,7 @@ class InverterProtocolServer {
   hal::SerialPort& line_;
   const hal::Clock& clock_;
   ServerConfig config_;
-  drive_link::wire::StreamFramer framer_{drive_link::wire::Direction::kRequests};
-  hal::Micros frame_started_at_ = 0;
-  hal::Micros last_poll_ = 0;
-  bool rx_more_ = false;
+  drive_link::wire::SerialFrameReader reader_{line_, drive_link::wire::Direction::kRequests};
   hal::Micros line_free_at_ = 0;  // end of the last queued reply's transmission
   hal::Micros write_retry_at_ = kNever;  // a write was refused (line buffer full): try again then
   std::deque<PendingReply> pending_;
