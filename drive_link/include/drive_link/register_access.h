@@ -1,0 +1,114 @@
+// What the front ends (Modbus TCP, CIP, web) use of the drive: facades implemented by
+// drive_link::RegisterProxy and by fakes in tests. Every front end reaches the inverter only through
+// these, so the rules of docs/drive-link.md "Register proxy" hold for all of them.
+//
+// - DriveRegisters: on-demand reads and writes of any communication number, asynchronous (one drive-link
+//   round trip each), with precise error results.
+// - ScannerImage: the scanner words of the cyclic exchange (c001-c006 out, c021-c026 in).
+// - LossSupervision: the front ends' report that their network connection is lost or back; the c100
+//   delay, c103 condition and c101 action are carried out behind it.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "base/status.h"
+#include "hal/clock.h"
+
+namespace drive_link {
+
+// Why an access failed. Each maps onto one protocol error in each front end (docs/modbus.md, docs/cip.md).
+enum class AccessError : std::uint8_t {
+  kNone,
+  kNoSuchRegister,           // a number ending A-F (refused locally) or the inverter's 0002
+  kOutOfRange,               // the inverter's 0001 "data error"
+  kNotWritableWhileRunning,  // the inverter's 0000 on a parameter write while the drive runs
+  kReadOnly,                 // a monitor (FC00-FEFF) or a value the card owns (c502/c503, c517-c522,
+                             // c524-c536, c555, c041-c046, c061-c066): refused locally
+  kReservedForScanner,       // a command register the cyclic exchange owns (IO scanning, §9.1)
+  kRefused,                  // the inverter's 0000 otherwise, or 0003 "command error"
+  kLinkDown,                 // option fault e-23 or configuration not loaded yet: nothing was sent
+  kTimeout,                  // no reply after every retry
+};
+
+const char* AccessErrorName(AccessError error);
+
+// W writes RAM and EEPROM; P writes RAM only. EEPROM lasts about 100,000 writes (seed 000 §8.5): front
+// ends choose kRamAndEeprom only for an explicit parameter write by a user, never for cyclic data.
+enum class WriteMode : std::uint8_t { kRamAndEeprom, kRamOnly };
+
+struct AccessResult {
+  AccessError error = AccessError::kNone;
+  std::uint16_t number = 0;  // the communication number accessed
+  std::uint16_t value = 0;   // read: the value; write: the value the inverter accepted
+  bool ok() const { return error == AccessError::kNone; }
+};
+
+// Names one access in its completion; never kNoAccess.
+using AccessToken = std::uint32_t;
+inline constexpr AccessToken kNoAccess = 0;
+
+class AccessListener {
+ public:
+  virtual ~AccessListener() = default;
+  // Called from the proxy's Poll, never from inside Read/Write (even for a local refusal), so the caller
+  // can finish its own bookkeeping first. May start new accesses.
+  virtual void OnAccessDone(AccessToken token, const AccessResult& result) = 0;
+};
+
+class DriveRegisters {
+ public:
+  virtual ~DriveRegisters() = default;
+  // Starts an access. kResourceExhausted: every slot of the pool is busy (try again on a later pass);
+  // kFailedPrecondition: the drive link is down (e-23). Otherwise the listener gets exactly one
+  // OnAccessDone with the token returned, unless Cancel(listener) is called first.
+  virtual base::Result<AccessToken> Read(std::uint16_t number, AccessListener& listener) = 0;
+  virtual base::Result<AccessToken> Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
+                                          AccessListener& listener) = 0;
+  // Forgets every pending completion for `listener` (a connection closed). The accesses themselves run
+  // to their end: a write already on the wire cannot be taken back.
+  virtual void Cancel(AccessListener& listener) = 0;
+};
+
+inline constexpr std::size_t kScannerWordCount = 6;
+using ScannerWords = std::array<std::uint16_t, kScannerWordCount>;
+
+// The cyclic exchange's image (seed 000 §3.2.4, §9.2). Word i is scanner word i+1: command word i goes
+// to the register c00(i+1) selects, monitor word i comes from the register c02(i+1) selects; a word whose
+// menu is 0 ("-") is not exchanged (command: ignored; monitor: reads 0).
+class ScannerImage {
+ public:
+  virtual ~ScannerImage() = default;
+  // The master's newest command words. The exchange sends a word when it changed, and refreshes all of
+  // them every cycle of the link (a RAM write; never EEPROM).
+  virtual void SetCommandWords(const ScannerWords& words) = 0;
+  virtual ScannerWords CommandWords() const = 0;
+  // The newest monitor words read from the inverter.
+  virtual ScannerWords MonitorWords() const = 0;
+  // True when `number` is the target of a command word in use: other services may not write it.
+  virtual bool IsScannerTarget(std::uint16_t number) const = 0;
+};
+
+// What cut the front end's traffic; reported in c536 where the manual has a code for it.
+enum class LossCause : std::uint8_t {
+  kModbusIoScanning,   // Modbus TCP IO scanning timeout (c523): c536 = 1
+  kModbusConnection,   // Modbus TCP traffic timeout (c523), IO scanning not in use: c536 unchanged
+  kCipConnection,      // EtherNet/IP connection timeout (RPI x 4 x 2^multiplier): c536 unchanged
+  kCarrierLost,        // both Ethernet links down: c536 = 3
+};
+
+class LossSupervision {
+ public:
+  virtual ~LossSupervision() = default;
+  // The front end's own timeout expired at `now`. After c100 the c103 condition is checked and the c101
+  // action carried out, unless NetworkRestored came first. Repeated calls while lost do nothing.
+  virtual void NetworkLost(LossCause cause, hal::Micros now) = 0;
+  // Traffic is back: a pending delay is cancelled, an action in force is lifted (an err8 trip stays
+  // until the inverter is reset), c536 goes back to 0.
+  virtual void NetworkRestored(hal::Micros now) = 0;
+  // A loss action is in force (the cyclic exchange is not writing the master's command words).
+  virtual bool loss_action_active() const = 0;
+};
+
+}  // namespace drive_link
