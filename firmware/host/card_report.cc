@@ -1,9 +1,11 @@
 #include "card_report.h"
 
+#include <span>
 #include <string>
 
 #include "lwip/memp.h"
 #include "lwip/stats.h"
+#include "sim_control.h"
 
 namespace host {
 namespace {
@@ -82,10 +84,11 @@ bool ParsePort(std::string_view letter, hal::PortId& port) {
   return false;
 }
 
-// "link L down" -> words; at most four are looked at.
-std::size_t Split(std::string_view text, std::string_view (&words)[4]) {
+// "link L down" -> words. More than kMaxWords words is no command of ours: the count says so.
+constexpr std::size_t kMaxWords = 4;
+std::size_t Split(std::string_view text, std::string_view (&words)[kMaxWords]) {
   std::size_t count = 0;
-  while (!text.empty() && count < 4) {
+  while (!text.empty() && count < kMaxWords) {
     const std::size_t start = text.find_first_not_of(' ');
     if (start == std::string_view::npos) break;
     text.remove_prefix(start);
@@ -93,7 +96,7 @@ std::size_t Split(std::string_view text, std::string_view (&words)[4]) {
     words[count++] = text.substr(0, end);
     text.remove_prefix(end == std::string_view::npos ? text.size() : end);
   }
-  return text.find_first_not_of(' ') == std::string_view::npos ? count : 5;
+  return text.find_first_not_of(' ') == std::string_view::npos ? count : kMaxWords + 1;
 }
 
 constexpr char kHelp[] =
@@ -101,7 +104,7 @@ constexpr char kHelp[] =
     "stats                  counters: event loop, netif, ports, lwIP protocols and pools\n"
     "leds                   current LED colours\n"
     "link L|R up|down       plug or unplug the cable of port L or R\n"
-    "power-cycle            restart the card (state dir kept)\n";
+    "power-cycle            power-cycle the inverter and restart the card (state dir kept)\n";
 
 }  // namespace
 
@@ -135,17 +138,22 @@ void AppendStats(const CardReport& report, std::string& out) {
 }
 
 void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
-                          const SetPlugged& set_plugged, hal::ResetControl& reset) {
-  std::string_view words[4];
+                          const SetPlugged& set_plugged, hal::ResetControl& reset, SimulatedInverter& inverter) {
+  std::string_view words[kMaxWords];
   const std::size_t count = Split(command, words);
   const std::string_view verb = count > 0 ? words[0] : std::string_view();
+  if (count <= kMaxWords && HandleSimCommand(std::span(words, count), reply, inverter)) return;
   if (verb == "help" && count == 1) {
     reply += kHelp;
+    reply += kSimControlHelp;
   } else if (verb == "stats" && count == 1) {
     AppendStats(report, reply);
   } else if (verb == "leds" && count == 1) {
     reply += report.leds.Describe() + "\n";
   } else if (verb == "power-cycle" && count == 1) {
+    // The card and the drive lose power together: the inverter's image is stored before the card
+    // restarts (re-exec), and the new process starts the inverter from it.
+    inverter.PowerCycle();
     reset.RequestReset(hal::ResetKind::kRestart);
   } else if (verb == "link" && count == 3) {
     hal::PortId port{};

@@ -1,5 +1,6 @@
 // The control socket's commands: what the card reports (stats, LEDs) and what a test may do to it
-// (unplug a cable, power-cycle). Kept apart from the assembly in host_card.cc.
+// (unplug a cable, power-cycle); the simulated inverter's commands are in sim_control.h. Kept apart
+// from the assembly in host_card.cc.
 #pragma once
 
 #include <functional>
@@ -11,6 +12,7 @@
 #include "hal/reset.h"
 #include "logging_leds.h"
 #include "poll_waiter.h"
+#include "sim_inverter.h"
 
 namespace host {
 
@@ -28,7 +30,9 @@ using SetPlugged = std::function<base::Status(hal::PortId, bool)>;
 void AppendStats(const CardReport& report, std::string& out);
 
 // Runs one control command and appends its answer (data lines, then "ok" or "error <reason>").
+// The inverter's commands (get, set, terminal, trip, inject, status) go to HandleSimCommand;
+// power-cycle power-cycles the inverter, stores its image and requests a restart of the card.
 void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
-                          const SetPlugged& set_plugged, hal::ResetControl& reset);
+                          const SetPlugged& set_plugged, hal::ResetControl& reset, SimulatedInverter& inverter);
 
 }  // namespace host

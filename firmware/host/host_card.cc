@@ -20,7 +20,9 @@
 #include "pcap_writer.h"
 #include "poll_waiter.h"
 #include "signal_source.h"
+#include "sim_inverter.h"
 #include "slirp_frame_port.h"
+#include "socket_serial_port.h"
 #include "tap_frame_port.h"
 
 namespace host {
@@ -123,6 +125,31 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   if (!store.ok()) return CardExit::kFailed;
   const hal::MacAddress mac = LoadOrCreateMac(*store.value(), random);
 
+  // The serial line to the inverter: a socket pair, the card's UART on one end and the simulated
+  // inverter on the other (docs/simulator.md "In ipe002z-host").
+  auto line = hal::host::SocketSerialPort::CreatePair();
+  if (!line.ok()) {
+    error = "cannot create the serial line to the simulated inverter";
+    return CardExit::kFailed;
+  }
+  std::unique_ptr<hal::host::SocketSerialPort> inverter_serial = std::move(line.value().inverter);
+  // The card's end of the line, for the drive link (drive_link::LinkClient on this hal::SerialPort,
+  // wrapped in a firmware::Service added to the loop below). Registered with the waiter so reply bytes
+  // wake the loop; whoever holds this end must read them, or poll() would report them forever.
+  std::unique_ptr<hal::host::SocketSerialPort> card_serial = std::move(line.value().card);
+
+  SimInverterConfig inverter_config;
+  inverter_config.model = options.model;
+  inverter_config.directory = options.state_dir + "/inverter";
+  inverter_config.presets = options.params;
+  inverter_config.server = ServerConfigFromOptions(options);
+  std::unique_ptr<SimulatedInverter> inverter =
+      SimulatedInverter::Create(inverter_config, *inverter_serial, clock, stderr, error);
+  if (!inverter) return CardExit::kFailed;
+  waiter.Register(*inverter_serial);         // request bytes wake the inverter
+  waiter.Register(inverter->poll_source());  // its reply and receive timers
+  waiter.Register(*card_serial);             // reply bytes wake the card
+
   NetworkPort network;
   if (!OpenNetworkPort(options, mac, clock, network, error)) return CardExit::kFailed;
   waiter.Register(*network.poll_source);
@@ -151,6 +178,8 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   firmware::EventLoop loop(clock, waiter, netif);
   firmware::LinkLeds link_leds(*port, leds);
   loop.AddService(link_leds).IgnoreError();
+  loop.AddService(*inverter).IgnoreError();  // stores the inverter's EEPROM image when due
+  // The drive link plugs in here: a service over *card_serial, added with loop.AddService.
 
   SignalSource signals;
   waiter.Register(signals);
@@ -160,7 +189,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   if (!options.sim_control_path.empty()) {
     control = std::make_unique<ControlServer>(
         options.sim_control_path, [&](std::string_view command, std::string& reply) {
-          HandleControlCommand(command, reply, report, network.set_plugged, reset);
+          HandleControlCommand(command, reply, report, network.set_plugged, reset, *inverter);
         });
     if (!control->Start(error)) return CardExit::kFailed;
     waiter.Register(*control);
@@ -179,6 +208,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
       ready_printed = true;
     }
   }
+  inverter->SaveIfChanged();  // at exit and before a restart: the drive keeps what it was told
   if (reset.pending().has_value()) {
     // Let the control socket deliver its answer before the process image is replaced.
     waiter.WaitUntil(clock.NowMicros());

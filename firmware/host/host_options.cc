@@ -3,7 +3,10 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string_view>
+
+#include "register_names.h"
 
 namespace host {
 namespace {
@@ -47,26 +50,46 @@ bool ParseCidr(const std::string& text, HostOptions& options) {
   return true;
 }
 
-// NAME: a parameter name of the inverter (c500, f856, cmod, acc); VALUE: a decimal or 0x-hex number.
+// NAME=VALUE with NAME a panel title or a communication number (letters and digits, at most 8) and
+// VALUE a decimal or 0x-hex integer; what they mean is checked once the model is known (CheckParam).
 bool ParseParam(const std::string& text, HostOptions& options) {
   const std::size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0 || eq > 8 || eq + 1 == text.size()) return false;
-  const std::string name = text.substr(0, eq);
-  const std::string value = text.substr(eq + 1);
-  if (std::isalpha(static_cast<unsigned char>(name[0])) == 0) return false;
-  for (char c : name) {
-    if (std::isalnum(static_cast<unsigned char>(c)) == 0) return false;
+  if (eq == std::string::npos || eq == 0 || eq > 8) return false;
+  for (std::size_t i = 0; i < eq; ++i) {
+    if (std::isalnum(static_cast<unsigned char>(text[i])) == 0) return false;
   }
-  std::size_t i = (value[0] == '-' || value[0] == '+') ? 1 : 0;
-  const bool hex = value.compare(i, 2, "0x") == 0 || value.compare(i, 2, "0X") == 0;
-  if (hex) i += 2;
-  if (i == value.size() || value.size() > 16) return false;
-  for (; i < value.size(); ++i) {
-    const auto c = static_cast<unsigned char>(value[i]);
-    if (!(hex ? std::isxdigit(c) != 0 : (std::isdigit(c) != 0 || c == '.'))) return false;
-  }
-  options.params.emplace_back(name, value);
+  ParamPreset preset;
+  preset.text = text;
+  if (!ParseRegisterValue(std::string_view(text).substr(eq + 1), preset.value)) return false;
+  options.params.push_back(preset);
   return true;
+}
+
+// A preset goes into the EEPROM of a new inverter, so it must name an EEPROM parameter hosts may write
+// and lie within its static limits. Run-time limits (ul <= fh...) are the model's, when it is applied.
+bool CheckParam(ParamPreset& preset, hal::host::sim::Model model, std::string& reason) {
+  const std::string name = preset.text.substr(0, preset.text.find('='));
+  const hal::host::sim::RegisterInfo* info = ResolveRegister(name, model, reason);
+  if (info == nullptr) return false;
+  if (info->storage != hal::host::sim::StorageClass::kEeprom || !info->HostWritable()) {
+    reason = std::string(info->title) + " is not a parameter hosts keep in the EEPROM (" +
+             hal::host::sim::StorageClassName(info->storage) +
+             (info->HostWritable() ? "" : ", not host-writable") + ")";
+    return false;
+  }
+  reason = StaticRangeError(*info, model, preset.value);
+  if (!reason.empty()) return false;
+  preset.number = info->number;
+  return true;
+}
+
+bool ParseMilliseconds(const std::string& text, int& out) {
+  if (text.empty() || text.size() > 4) return false;
+  for (char c : text) {
+    if (std::isdigit(static_cast<unsigned char>(c)) == 0) return false;
+  }
+  out = std::stoi(text);
+  return out <= 2000;
 }
 
 }  // namespace
@@ -97,10 +120,16 @@ const char* HostUsage() {
          "  --gateway A.B.C.D                  default gateway (loopback default 10.0.2.2)\n"
          "  --host-addr A.B.C.D                loopback address the forwards bind (default 127.0.0.2)\n"
          "  --state-dir DIR                    persistent state (default: a fresh temporary dir)\n"
-         "  --param NAME=VALUE                 preset an inverter parameter on a fresh state dir\n"
-         "  --model vf-mb1|vf-s15              inverter model (default vf-mb1)\n"
          "  --pcap FILE                        capture every frame in and out\n"
          "  --sim-control PATH                 UNIX control socket (line protocol; 'help' lists it)\n"
+         "simulated inverter (its EEPROM is kept in DIR/inverter/MODEL.eeprom):\n"
+         "  --model vf-mb1|vf-s15              inverter model (default vf-mb1); each model has its own file\n"
+         "  --param NAME|COMMNO=VALUE          preset a parameter (acc=50, 0009=50, c500=1; value in the\n"
+         "                                     register's unit step); repeatable; presets for a new inverter:\n"
+         "                                     applied only while DIR has no usable file for the model\n"
+         "  --rs485-profile                    19200 baud 8E1 with the manual's 20 ms processing time\n"
+         "  --sim-processing-ms N              the inverter's processing time, 0-2000 ms (default 2,\n"
+         "                                     20 with --rs485-profile)\n"
          "  --help                             this text\n";
 }
 
@@ -110,6 +139,10 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--help" || flag == "-h") return ParseOutcome::kHelp;
+    if (flag == "--rs485-profile") {
+      options.rs485_profile = true;
+      continue;
+    }
     if (i + 1 >= argc) {
       error = flag.rfind("--", 0) == 0 ? "missing value for " + flag : "unexpected argument " + flag;
       return ParseOutcome::kError;
@@ -133,8 +166,11 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
     } else if (flag == "--param") {
       ok = ParseParam(value, options);
     } else if (flag == "--model") {
-      ok = value == "vf-mb1" || value == "vf-s15";
-      options.model = value;
+      const std::optional<hal::host::sim::Model> model = hal::host::sim::ModelFromName(value);
+      ok = model.has_value();
+      if (ok) options.model = *model;
+    } else if (flag == "--sim-processing-ms") {
+      ok = ParseMilliseconds(value, options.sim_processing_ms);
     } else if (flag == "--pcap") {
       options.pcap_path = value;
     } else if (flag == "--sim-control") {
@@ -157,6 +193,13 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
   if (!options.ip_given) {
     error = "--ip is required with --net tap";
     return ParseOutcome::kError;
+  }
+  for (ParamPreset& preset : options.params) {
+    std::string reason;
+    if (!CheckParam(preset, options.model, reason)) {
+      error = "invalid value for --param: '" + preset.text + "' (" + reason + ")";
+      return ParseOutcome::kError;
+    }
   }
   return ParseOutcome::kRun;
 }

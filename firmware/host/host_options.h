@@ -3,12 +3,21 @@
 
 #include <cstdint>
 #include <string>
-#include <utility>
 #include <vector>
+
+#include "inverter_sim/register_table.h"
 
 namespace host {
 
 enum class NetKind { kLoopback, kTap };
+
+// --param NAME|COMMNO=VALUE: a parameter preset for the simulated inverter, checked against the
+// register table of the chosen model (an EEPROM parameter hosts may write, within its static limits).
+struct ParamPreset {
+  std::string text;          // as given ("acc=50"), for messages
+  std::uint16_t number = 0;  // communication number
+  std::int32_t value = 0;    // in the register's unit step
+};
 
 struct HostOptions {
   NetKind net = NetKind::kLoopback;
@@ -19,10 +28,13 @@ struct HostOptions {
   bool ip_given = false;
   std::string host_address = "127.0.0.2";  // loopback address the forwards bind (--net loopback)
   std::string state_dir;                    // empty: a fresh temporary directory
-  std::vector<std::pair<std::string, std::string>> params;  // --param NAME=VALUE, in order
-  std::string model = "vf-mb1";
   std::string pcap_path;
   std::string sim_control_path;
+  // The simulated inverter.
+  hal::host::sim::Model model = hal::host::sim::Model::kVfMb1;
+  std::vector<ParamPreset> params;  // in order; applied only to a new inverter (no EEPROM file yet)
+  bool rs485_profile = false;       // 19200 baud 8E1, 20 ms processing (hal::host::sim::Rs485Profile())
+  int sim_processing_ms = -1;       // the inverter's processing delay; -1: the profile's (2 ms or 20 ms)
 };
 
 enum class ParseOutcome { kRun, kHelp, kError };

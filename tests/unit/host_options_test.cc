@@ -23,7 +23,10 @@ TEST(HostOptions, NoArguments_LoopbackWithSlirpDefaults) {
   EXPECT_EQ(o.netmask, 0xFFFFFF00u);
   EXPECT_EQ(o.gateway, 0x0A000202u);
   EXPECT_EQ(o.host_address, "127.0.0.2");
-  EXPECT_EQ(o.model, "vf-mb1");
+  EXPECT_EQ(o.model, hal::host::sim::Model::kVfMb1);
+  EXPECT_TRUE(o.params.empty());
+  EXPECT_FALSE(o.rs485_profile);
+  EXPECT_EQ(o.sim_processing_ms, -1);
 }
 
 TEST(HostOptions, TwoTapPortsAndAddress_Parsed) {
@@ -40,9 +43,49 @@ TEST(HostOptions, TwoTapPortsAndAddress_Parsed) {
   EXPECT_EQ(o.netmask, 0xFFFFFF00u);
   EXPECT_EQ(o.gateway, 0xC0A80101u);
   ASSERT_EQ(o.params.size(), 2u);
-  EXPECT_EQ(o.params[0], (std::pair<std::string, std::string>{"c500", "1"}));
-  EXPECT_EQ(o.params[1], (std::pair<std::string, std::string>{"f856", "0x2"}));
-  EXPECT_EQ(o.model, "vf-s15");
+  EXPECT_EQ(o.params[0].text, "c500=1");
+  EXPECT_EQ(o.params[0].number, 0xC500);
+  EXPECT_EQ(o.params[0].value, 1);
+  EXPECT_EQ(o.params[1].text, "f856=0x2");
+  EXPECT_EQ(o.params[1].number, 0x0856);
+  EXPECT_EQ(o.params[1].value, 2);
+  EXPECT_EQ(o.model, hal::host::sim::Model::kVfS15);
+}
+
+TEST(HostOptions, ParamByTitleOrCommunicationNumber_InOrder) {
+  HostOptions o;
+  std::string error;
+  ASSERT_EQ(Parse({"--param", "ACC=50", "--param", "0010=0x28", "--param", "acc=60", "--param", "vb=-0"}, o,
+                  error),
+            ParseOutcome::kRun)
+      << error;
+  ASSERT_EQ(o.params.size(), 4u);
+  EXPECT_EQ(o.params[0].number, 0x0009);
+  EXPECT_EQ(o.params[0].value, 50);
+  EXPECT_EQ(o.params[1].number, 0x0010);  // dec
+  EXPECT_EQ(o.params[1].value, 40);
+  EXPECT_EQ(o.params[2].number, 0x0009);  // repeated: applied in order, the last one wins
+  EXPECT_EQ(o.params[2].value, 60);
+  EXPECT_EQ(o.params[3].number, 0x0016);
+  EXPECT_EQ(o.params[3].value, 0);
+}
+
+TEST(HostOptions, ParamCheckedAgainstTheModelGivenLater) {
+  // fmod 12-14 exist on VF-S15 only (registers.csv); --model may come after --param.
+  HostOptions s15;
+  std::string error;
+  EXPECT_EQ(Parse({"--param", "fmod=12", "--model", "vf-s15"}, s15, error), ParseOutcome::kRun) << error;
+  HostOptions mb1;
+  EXPECT_EQ(Parse({"--param", "fmod=12"}, mb1, error), ParseOutcome::kError);
+  EXPECT_EQ(error, "invalid value for --param: 'fmod=12' (out of range 0..11)");
+}
+
+TEST(HostOptions, SimulatorServerFlags) {
+  HostOptions o;
+  std::string error;
+  ASSERT_EQ(Parse({"--rs485-profile", "--sim-processing-ms", "7"}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_TRUE(o.rs485_profile);
+  EXPECT_EQ(o.sim_processing_ms, 7);
 }
 
 TEST(HostOptions, BadValues_ErrorNamesTheFlag) {
@@ -58,6 +101,22 @@ TEST(HostOptions, BadValues_ErrorNamesTheFlag) {
       {{"--param", "c500"}, "invalid value for --param: 'c500'"},
       {{"--param", "c5-0=1"}, "invalid value for --param: 'c5-0=1'"},
       {{"--param", "c500=1x"}, "invalid value for --param: 'c500=1x'"},
+      {{"--param", "c500=1.5"}, "invalid value for --param: 'c500=1.5'"},
+      {{"--param", "c500=--1"}, "invalid value for --param: 'c500=--1'"},
+      {{"--param", "c500="}, "invalid value for --param: 'c500='"},
+      {{"--param", "nosuch=1"}, "invalid value for --param: 'nosuch=1' (unknown register 'nosuch')"},
+      {{"--param", "000A=1"},
+       "invalid value for --param: '000A=1' (no communication number 000A (numbers ending in A-F do not "
+       "exist))"},
+      {{"--param", "0001=1"}, "invalid value for --param: '0001=1' (no communication number 0001)"},
+      {{"--param", "acc=0"}, "invalid value for --param: 'acc=0' (out of range 1..60000)"},
+      {{"--param", "fa06=1"},
+       "invalid value for --param: 'fa06=1' (fa06 is not a parameter hosts keep in the EEPROM (ram))"},
+      {{"--param", "fd00=1"},
+       "invalid value for --param: 'fd00=1' (fd00 is not a parameter hosts keep in the EEPROM (monitor, "
+       "not host-writable))"},
+      {{"--sim-processing-ms", "2001"}, "invalid value for --sim-processing-ms: '2001'"},
+      {{"--sim-processing-ms", "-1"}, "invalid value for --sim-processing-ms: '-1'"},
       {{"--frobnicate", "1"}, "unknown option --frobnicate"},
       {{"--pcap"}, "missing value for --pcap"},
       {{"stray"}, "unexpected argument stray"},
@@ -74,6 +133,14 @@ TEST(HostOptions, Help_Recognised) {
   HostOptions o;
   std::string error;
   EXPECT_EQ(Parse({"--ip", "1.2.3.4/8", "--help"}, o, error), ParseOutcome::kHelp);
+}
+
+TEST(HostOptions, Help_SaysPresetsApplyToANewInverterOnly) {
+  const std::string usage = host::HostUsage();
+  EXPECT_NE(usage.find("--param NAME|COMMNO=VALUE"), std::string::npos);
+  EXPECT_NE(usage.find("applied only while DIR has no usable file for the model"), std::string::npos);
+  EXPECT_NE(usage.find("--rs485-profile"), std::string::npos);
+  EXPECT_NE(usage.find("--sim-processing-ms N"), std::string::npos);
 }
 
 TEST(HostOptions, Ipv4_RoundTrip) {

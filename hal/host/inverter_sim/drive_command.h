@@ -18,6 +18,8 @@
 #include <array>
 #include <cstdint>
 
+#include "drive_link/drive_registers.h"
+
 namespace hal::host::sim {
 
 enum class CommandSource : std::uint8_t { kTerminal, kPanel, kRs485, kCanOpen, kOption };
@@ -56,22 +58,8 @@ inline constexpr std::int32_t kFrequencyChange = 104;      // FCHG: fmod -> f207
 inline constexpr std::int32_t kCommandFromTerminal = 108;  // CMTB
 }  // namespace input_function
 
-// FA06 / FA00 bits (seed 000 §3.2.4.2).
-namespace command_bit {
-inline constexpr std::uint16_t kPresetMask = 0x000F;
-inline constexpr std::uint16_t kThr2 = 1u << 4;
-inline constexpr std::uint16_t kPidOff = 1u << 5;
-inline constexpr std::uint16_t kAd2 = 1u << 6;
-inline constexpr std::uint16_t kDcBraking = 1u << 7;
-inline constexpr std::uint16_t kJog = 1u << 8;
-inline constexpr std::uint16_t kReverse = 1u << 9;
-inline constexpr std::uint16_t kRun = 1u << 10;
-inline constexpr std::uint16_t kCoastStop = 1u << 11;
-inline constexpr std::uint16_t kEmergencyStop = 1u << 12;
-inline constexpr std::uint16_t kFaultReset = 1u << 13;
-inline constexpr std::uint16_t kFrequencyPriority = 1u << 14;
-inline constexpr std::uint16_t kCommandPriority = 1u << 15;
-}  // namespace command_bit
+// FA06 / FA00 bits (seed 000 §3.2.4.2): the card's definition, so both ends of the link agree.
+namespace command_bit = drive_link::reg::command_bit;
 
 // FA23 bits (seed 000 §3.2.4.3). Every other bit is reserved and must be written 0.
 namespace command2_bit {

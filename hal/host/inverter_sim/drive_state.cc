@@ -82,6 +82,8 @@ double InverterModel::TargetFrequency(const DriveCommand& cmd) const {
   return cmd.reverse ? -f : f;
 }
 
+std::int32_t InverterModel::target_frequency() const { return Round(TargetFrequency(command())); }
+
 RampRates InverterModel::Rates(const DriveCommand& cmd) const {
   std::uint16_t acc = reg::kAcc;
   std::uint16_t dec = reg::kDec;
@@ -203,14 +205,14 @@ std::uint16_t InverterModel::StatusWord() const {
   if (tripped()) {
     set(true, status_bit::kFailureFl);
     set(true, status_bit::kTripped);
-    set(trip_ == trip_code::kEmergencyStop, status_bit::kEmergencyStop);
+    set(trip_ == trip_code::kEmergencyStop, status_bit::kEmergencyStopped);
     return w;
   }
   const bool run = RunEffective(cmd);
   set(cmd.dc_braking && cmd.standby, status_bit::kDcBraking);
   set(cmd.jog && run, status_bit::kJog);
   set(output_ < 0.0 || (output_ == 0.0 && run && cmd.reverse), status_bit::kReverse);
-  set(run || output_ != 0.0, status_bit::kRun);
+  set(run || output_ != 0.0, status_bit::kRunning);
   set(!cmd.standby, status_bit::kStOff);
   set(run, status_bit::kReadyStRun);  // ready, ST = ON and RUN = ON
   set(true, status_bit::kReady);      // initialised, no failure stop, no alarm stop

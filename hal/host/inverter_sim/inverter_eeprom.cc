@@ -160,6 +160,7 @@ bool InverterModel::LoadEeprom(std::string_view text) {
   input_kwh_ = static_cast<double>(input_mwh) / 1e6;
   output_kwh_ = static_cast<double>(output_mwh) / 1e6;
   trip_history_ = history;
+  ++eeprom_generation_;
   return true;
 }
 

@@ -91,6 +91,8 @@ WriteOutcome InverterModel::CheckRunTimeLimits(std::uint16_t number, std::int32_
     ok = value <= fh;  // preset speeds up to fh; ll..ul applies when they run
   } else if (number == reg::kFa23) {
     ok = (value & ~static_cast<std::int32_t>(command2_bit::kDefined)) == 0;  // reserved bits: write 0
+  } else if (number == reg::kFa30) {
+    ok = value == 0 || value == trip_code::kOptionCommunication;  // the card's contract: 27 or 0
   } else if (number == reg::kC523) {
     ok = value == 0 || value >= 5;  // 0.0 = disabled or 0.5-60 s (seed 000 §3.2.3)
   } else if (number >= reg::kC001 && number <= 0xC006) {
@@ -130,6 +132,7 @@ WriteResult InverterModel::Write(std::uint16_t number, std::uint16_t word, Write
   if (info->storage == StorageClass::kEeprom && target == WriteTarget::kRamAndEeprom) {
     eeprom_[i] = value;
     ++eeprom_writes_[i];
+    ++eeprom_generation_;
   }
 
   if (number == reg::kFa06 || number == reg::kFa00) {
@@ -137,6 +140,10 @@ WriteResult InverterModel::Write(std::uint16_t number, std::uint16_t word, Write
   } else if (number == reg::kTyp) {
     ExecuteTyp(value);
     SetRam(reg::kTyp, 0);  // "reads 0 after execution"
+  } else if (number == reg::kFa30) {
+    // The option's fault line: 27 trips err8 as Trip(27) does; the register always reads 0 again.
+    if (value == trip_code::kOptionCommunication) Trip(trip_code::kOptionCommunication);
+    SetRam(reg::kFa30, 0);
   } else if (number == reg::kF899 && value == 1) {
     Reinitialise(timing_.reset);  // resets the option and the drive; f899 reads 0 again
   }
@@ -162,6 +169,7 @@ void InverterModel::ExecuteTyp(std::int32_t choice) {
     if (eeprom_[i] != value) {
       eeprom_[i] = value;
       ++eeprom_writes_[i];
+      ++eeprom_generation_;
     }
   };
   if (choice == 1 || choice == 2) {
@@ -191,6 +199,7 @@ void InverterModel::Trip(std::uint8_t code) {
   }
   for (std::size_t i = trip_history_.size() - 1; i > 0; --i) trip_history_[i] = trip_history_[i - 1];
   trip_history_[0] = code;
+  ++eeprom_generation_;
   trip_ = code;
   output_ = 0.0;  // the output is cut: the motor coasts
 }

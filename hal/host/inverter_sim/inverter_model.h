@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "base/status.h"
+#include "drive_link/drive_registers.h"
 #include "hal/clock.h"
 #include "inverter_sim/drive_command.h"
 #include "inverter_sim/motor_model.h"
@@ -48,22 +49,29 @@ struct WriteResult {
 
 const char* WriteOutcomeName(WriteOutcome outcome);
 
-// Trip codes (FC90, FE10-FE13).
+// Trip codes (FC90, FE10-FE13). err8 and e-23 are the card's too (drive_link/drive_registers.h).
 namespace trip_code {
 inline constexpr std::uint8_t kNone = 0;
 inline constexpr std::uint8_t kEmergencyStop = 0x11;      // "E", 17 (seed 003 §10, VF-S11 table)
 inline constexpr std::uint8_t kRs485Timeout = 0x18;       // "err5", 24 (seed 003 §10; S15 unverified)
-inline constexpr std::uint8_t kOptionCommunication = 0x1B;  // "err8", 27 (seed 000 §3.2.3, §12.2)
-inline constexpr std::uint8_t kOptionFault = 0x37;        // "e-23", 55 (seed 000 §12.1)
+// "err8", 27 (seed 000 §3.2.3, §12.2) and "e-23", 55 (seed 000 §12.1).
+inline constexpr std::uint8_t kOptionCommunication = static_cast<std::uint8_t>(drive_link::reg::kErr8TripCode);
+inline constexpr std::uint8_t kOptionFault = static_cast<std::uint8_t>(drive_link::reg::kE23TripCode);
 }  // namespace trip_code
 
 enum class AnalogInput : std::uint8_t { kVia, kVib, kVic };
 
-// Bits of FD01 (seed 000 §3.2.4.7).
+// Bits of FD01 (seed 000 §3.2.4.7). The bits the card acts on are the card's definition
+// (drive_link/drive_registers.h); the others only the simulator computes.
 namespace status_bit {
-inline constexpr std::uint16_t kFailureFl = 1u << 0;
-inline constexpr std::uint16_t kTripped = 1u << 1;
-inline constexpr std::uint16_t kAlarm = 1u << 2;
+using drive_link::reg::status_bit::kAlarm;
+using drive_link::reg::status_bit::kEmergencyStopped;
+using drive_link::reg::status_bit::kFailureFl;
+using drive_link::reg::status_bit::kReady;
+using drive_link::reg::status_bit::kReadyStRun;
+using drive_link::reg::status_bit::kRunning;
+using drive_link::reg::status_bit::kStOff;
+using drive_link::reg::status_bit::kTripped;
 inline constexpr std::uint16_t kUndervoltage = 1u << 3;
 inline constexpr std::uint16_t kThr2 = 1u << 4;
 inline constexpr std::uint16_t kPidOff = 1u << 5;
@@ -71,11 +79,6 @@ inline constexpr std::uint16_t kAd2 = 1u << 6;
 inline constexpr std::uint16_t kDcBraking = 1u << 7;
 inline constexpr std::uint16_t kJog = 1u << 8;
 inline constexpr std::uint16_t kReverse = 1u << 9;
-inline constexpr std::uint16_t kRun = 1u << 10;
-inline constexpr std::uint16_t kStOff = 1u << 11;
-inline constexpr std::uint16_t kEmergencyStop = 1u << 12;
-inline constexpr std::uint16_t kReadyStRun = 1u << 13;
-inline constexpr std::uint16_t kReady = 1u << 14;
 }  // namespace status_bit
 
 // FC91 bits the model itself raises (seed 000 §3.2.4.13).
@@ -115,6 +118,7 @@ class InverterModel {
   bool running() const;  // FD01 bit 10: run state or output not yet at 0 Hz
   std::uint16_t StatusWord() const;  // FD01
   std::int32_t output_frequency() const;  // FD00, 0.01 Hz
+  std::int32_t target_frequency() const;  // where the ramp is heading: signed 0.01 Hz, 0 when stopped
   double output_frequency_signed() const { return output_; }  // 0.01 Hz, negative in reverse
   std::int32_t motor_speed_rpm() const;  // estimated speed (FD16) in min-1 with f856 pole pairs
   DriveCommand command() const;          // what the source in command asks for now
@@ -159,6 +163,9 @@ class InverterModel {
   // for the other model.
   std::string SerializeEeprom() const;
   bool LoadEeprom(std::string_view text);
+  // Moves on whenever the image's register values, write counters or trip history change, so whoever
+  // stores the image knows a setting changed; the cumulative time and energy counters do not move it.
+  std::uint64_t eeprom_generation() const { return eeprom_generation_; }
 
  private:
   enum class Loss : std::uint8_t { kNone, kPending, kActive };
@@ -198,6 +205,7 @@ class InverterModel {
   std::vector<std::uint32_t> eeprom_writes_;
   std::vector<std::int32_t> active_;  // values in force of effective-after-reset registers
   std::vector<std::int32_t> held_;    // trip-hold values captured at the trip
+  std::uint64_t eeprom_generation_ = 0;
 
   // Time.
   bool time_known_ = false;

@@ -1,23 +1,54 @@
 // Communication numbers the simulated inverter's behaviour model acts on. Every one must be a row of
 // registers.csv: InverterModel aborts on a missing one the first time it looks it up, and the unit tests
 // (tests/unit/inverter_*_test.cc) reach every one. This header only names them.
+//
+// Numbers the card acts on too are defined once, in drive_link/drive_registers.h, and only brought in
+// here; the rest are the simulator's own.
 #pragma once
 
 #include <cstdint>
 
+#include "drive_link/drive_registers.h"
+
 namespace hal::host::sim::reg {
 
-inline constexpr std::uint16_t kCmod = 0x0003;
-inline constexpr std::uint16_t kFmod = 0x0004;
+// Shared with the card.
+using drive_link::reg::kAcc;
+using drive_link::reg::kC001;
+using drive_link::reg::kC021;
+using drive_link::reg::kC100;
+using drive_link::reg::kC101;
+using drive_link::reg::kC102;
+using drive_link::reg::kC103;
+using drive_link::reg::kC523;
+using drive_link::reg::kCmod;
+using drive_link::reg::kDec;
+using drive_link::reg::kF856;
+using drive_link::reg::kF899;
+using drive_link::reg::kFa00;
+using drive_link::reg::kFa01;
+using drive_link::reg::kFa06;
+using drive_link::reg::kFa07;
+using drive_link::reg::kFa23;
+using drive_link::reg::kFa30;
+using drive_link::reg::kFa50;
+using drive_link::reg::kFa51;
+using drive_link::reg::kFc90;
+using drive_link::reg::kFc91;
+using drive_link::reg::kFd00;
+using drive_link::reg::kFd01;
+using drive_link::reg::kFe14;
+using drive_link::reg::kFmod;
+using drive_link::reg::kUl;
+using drive_link::reg::kVb;
+using drive_link::reg::kVlv;
+
+// The simulator's own.
 inline constexpr std::uint16_t kFmsl = 0x0005;
 inline constexpr std::uint16_t kTyp = 0x0007;
-inline constexpr std::uint16_t kAcc = 0x0009;
-inline constexpr std::uint16_t kDec = 0x0010;
 inline constexpr std::uint16_t kFh = 0x0011;
-inline constexpr std::uint16_t kUl = 0x0012;
 inline constexpr std::uint16_t kLl = 0x0013;
 inline constexpr std::uint16_t kVl = 0x0014;
-inline constexpr std::uint16_t kVb = 0x0016;
 inline constexpr std::uint16_t kSr1 = 0x0018;  // sr1-sr7 = 0018-0024 (0019, 0020: no A-F numbers)
 inline constexpr std::uint16_t kF109 = 0x0109;
 inline constexpr std::uint16_t kF111 = 0x0111;  // f111-f118
@@ -32,7 +63,6 @@ inline constexpr std::uint16_t kF219 = 0x0219;
 inline constexpr std::uint16_t kF268 = 0x0268;
 inline constexpr std::uint16_t kF287 = 0x0287;  // f287-f294: preset speeds 8-15
 inline constexpr std::uint16_t kF405 = 0x0405;
-inline constexpr std::uint16_t kVlv = 0x0409;
 inline constexpr std::uint16_t kF415 = 0x0415;
 inline constexpr std::uint16_t kF417 = 0x0417;
 inline constexpr std::uint16_t kF500 = 0x0500;
@@ -42,26 +72,6 @@ inline constexpr std::uint16_t kF511 = 0x0511;
 inline constexpr std::uint16_t kF519 = 0x0519;
 inline constexpr std::uint16_t kF749 = 0x0749;
 inline constexpr std::uint16_t kF814 = 0x0814;
-inline constexpr std::uint16_t kF856 = 0x0856;
-inline constexpr std::uint16_t kF899 = 0x0899;
-inline constexpr std::uint16_t kC001 = 0xC001;  // c001-c006
-inline constexpr std::uint16_t kC021 = 0xC021;  // c021-c026
-inline constexpr std::uint16_t kC100 = 0xC100;
-inline constexpr std::uint16_t kC101 = 0xC101;
-inline constexpr std::uint16_t kC102 = 0xC102;
-inline constexpr std::uint16_t kC103 = 0xC103;
-inline constexpr std::uint16_t kC523 = 0xC523;
-inline constexpr std::uint16_t kFa00 = 0xFA00;
-inline constexpr std::uint16_t kFa01 = 0xFA01;
-inline constexpr std::uint16_t kFa06 = 0xFA06;
-inline constexpr std::uint16_t kFa07 = 0xFA07;
-inline constexpr std::uint16_t kFa23 = 0xFA23;
-inline constexpr std::uint16_t kFa50 = 0xFA50;
-inline constexpr std::uint16_t kFa51 = 0xFA51;
-inline constexpr std::uint16_t kFc90 = 0xFC90;
-inline constexpr std::uint16_t kFc91 = 0xFC91;
-inline constexpr std::uint16_t kFd00 = 0xFD00;
-inline constexpr std::uint16_t kFd01 = 0xFD01;
 inline constexpr std::uint16_t kFd03 = 0xFD03;
 inline constexpr std::uint16_t kFd04 = 0xFD04;
 inline constexpr std::uint16_t kFd05 = 0xFD05;
@@ -89,7 +99,6 @@ inline constexpr std::uint16_t kFe06 = 0xFE06;
 inline constexpr std::uint16_t kFe07 = 0xFE07;
 inline constexpr std::uint16_t kFe10 = 0xFE10;  // FE10-FE13 trip history
 inline constexpr std::uint16_t kFe13 = 0xFE13;
-inline constexpr std::uint16_t kFe14 = 0xFE14;
 inline constexpr std::uint16_t kFe15 = 0xFE15;
 inline constexpr std::uint16_t kFe16 = 0xFE16;
 inline constexpr std::uint16_t kFe18 = 0xFE18;

@@ -1,0 +1,104 @@
+// The simulated inverter behind ipe002z-host: the behaviour model, its Toshiba-protocol server on the
+// inverter end of the serial line, and its EEPROM image kept in the state dir, so the drive keeps its
+// parameters across runs and restarts like a real one (docs/simulator.md "In ipe002z-host").
+//
+// The EEPROM file is `<state dir>/inverter/<model>.eeprom` (vf-mb1.eeprom, vf-s15.eeprom): the model's
+// text image (InverterModel::SerializeEeprom). One file per model, so one state dir can stand for a card
+// that was moved between a VF-MB1 and a VF-S15; --model picks the drive.
+//
+// When it is stored (always whole, atomically: temp file, fsync, rename, fsync of the directory):
+// - at start, when the inverter is new (no usable file): defaults plus the --param presets;
+// - within kSaveCheckInterval of a change of a register value, a write counter or the trip history;
+// - when only the cumulative counters moved (run and powered time, energy): at most every
+//   kCounterSaveInterval, so an idle card does not write every second;
+// - at exit and before a restart (power-cycle), whatever changed.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "event_loop.h"
+#include "hal/clock.h"
+#include "hal/serial_port.h"
+#include "host_options.h"
+#include "inverter_sim/inverter_model.h"
+#include "inverter_sim/protocol_server.h"
+
+namespace host {
+
+struct SimInverterConfig {
+  hal::host::sim::Model model = hal::host::sim::Model::kVfMb1;
+  std::string directory;             // where the EEPROM file lives: <state dir>/inverter
+  std::vector<ParamPreset> presets;  // applied to a new inverter only
+  hal::host::sim::ServerConfig server;
+};
+
+// The server settings the command line asks for: --rs485-profile, --sim-processing-ms.
+hal::host::sim::ServerConfig ServerConfigFromOptions(const HostOptions& options);
+
+class SimulatedInverter final : public firmware::Service {
+ public:
+  static constexpr hal::Micros kSaveCheckInterval = hal::kMicrosPerSecond;
+  static constexpr hal::Micros kCounterSaveInterval = 60 * hal::kMicrosPerSecond;
+
+  // Loads the model's EEPROM file, or starts a new inverter: table defaults, then the presets written
+  // as W (RAM and EEPROM) in order, then the image is stored at once. A file that cannot be used
+  // (unreadable, malformed, another model's image) is renamed to `<file>.bad` and a new inverter
+  // starts, with a warning on `log`. A state dir that cannot be written gives a warning, not a failure
+  // (the drive then forgets on exit). Null with `error` only when a preset is refused by the model.
+  static std::unique_ptr<SimulatedInverter> Create(const SimInverterConfig& config, hal::SerialPort& line,
+                                                   const hal::Clock& clock, std::FILE* log,
+                                                   std::string& error);
+
+  SimulatedInverter(const SimulatedInverter&) = delete;
+  SimulatedInverter& operator=(const SimulatedInverter&) = delete;
+
+  hal::host::sim::InverterModel& model() { return model_; }
+  hal::host::sim::InverterProtocolServer& server() { return server_; }
+  // Register with the PollWaiter (the server's timers); the line's own SocketSerialPort wakes it on bytes.
+  hal::host::PollSource& poll_source() { return poll_source_; }
+  const hal::Clock& clock() const { return clock_; }
+
+  // Moves the model's time to the clock's now; every control command starts with it.
+  void AdvanceToNow() { model_.Advance(clock_.NowMicros()); }
+
+  // firmware::Service: every kSaveCheckInterval, moves the model's time and stores the image when due.
+  void Poll(hal::Micros now) override;
+  hal::Micros NextDeadline() const override { return next_check_; }
+
+  // Power off and on (InverterModel::PowerCycle: RAM-only registers back to defaults, trips cleared),
+  // then stores the image.
+  void PowerCycle();
+  // Moves the model's time to now and stores the image when it differs from the stored one; false
+  // (with a warning on the log, once per run of failures) when the file cannot be written.
+  bool SaveIfChanged();
+
+  const std::string& file_path() const { return path_; }
+  bool started_new() const { return started_new_; }  // no usable file was found: presets applied
+  std::uint64_t saves() const { return saves_; }     // images written, for tests
+
+ private:
+  SimulatedInverter(const SimInverterConfig& config, hal::SerialPort& line, const hal::Clock& clock,
+                    std::FILE* log);
+  void Warn(const std::string& text);
+
+  const hal::Clock& clock_;
+  std::FILE* log_;
+  std::string path_;
+  hal::host::sim::InverterModel model_;
+  hal::host::sim::InverterProtocolServer server_;
+  hal::host::sim::ProtocolServerPollSource poll_source_{server_};
+
+  bool started_new_ = false;
+  std::string saved_image_;  // what the file holds (empty: nothing stored yet)
+  std::uint64_t saved_generation_ = 0;
+  hal::Micros saved_at_ = 0;
+  hal::Micros next_check_ = 0;
+  bool save_failing_ = false;  // warn once per run of failures, not every second
+  std::uint64_t saves_ = 0;
+};
+
+}  // namespace host
