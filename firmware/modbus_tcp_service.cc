@@ -1,0 +1,247 @@
+#include "modbus_tcp_service.h"
+
+#include <algorithm>
+#include <cstring>
+#include <span>
+
+#include "lwip/ip.h"
+#include "lwipopts.h"
+
+namespace firmware {
+namespace {
+
+// Everything TCP may deliver fits into the server: the window is never larger than its buffer.
+static_assert(modbus::kReceiveBufferBytes >= TCP_WND, "the Modbus receive buffer must hold a whole TCP window");
+static_assert(modbus::Server::kMaxClients == IPE_MAX_MODBUS_CLIENTS, "lwipopts.h sizes pools for these clients");
+
+// lwIP's poll callback runs every interval x 500 ms: a stalled write is retried within a second.
+constexpr u8_t kPollInterval = 2;
+
+modbus::Ipv4Address PeerAddress(const tcp_pcb* pcb) {
+  const u32_t network_order = ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip));
+  modbus::Ipv4Address address{};
+  std::memcpy(address.data(), &network_order, address.size());
+  return address;
+}
+
+}  // namespace
+
+base::Status ModbusTcpService::Configure(const drive_link::CardConfig& config) {
+  server_.Configure(config);
+  if (config.protocol == drive_link::Protocol::kModbusTcp) return Start();
+  Stop();
+  return base::OkStatus();
+}
+
+base::Status ModbusTcpService::Start() {
+  if (listener_ != nullptr) return base::OkStatus();
+  tcp_pcb* pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
+  if (pcb == nullptr) return base::ResourceExhausted();
+  if (tcp_bind(pcb, IP4_ADDR_ANY, options_.port) != ERR_OK) {
+    tcp_close(pcb);
+    return base::FailedPrecondition();
+  }
+  err_t err = ERR_OK;
+  tcp_pcb* listener = tcp_listen_with_backlog_and_err(pcb, TCP_DEFAULT_LISTEN_BACKLOG, &err);
+  if (listener == nullptr) {
+    tcp_close(pcb);
+    return base::ResourceExhausted();
+  }
+  listener_ = listener;
+  tcp_arg(listener_, this);
+  tcp_accept(listener_, &ModbusTcpService::OnAccept);
+  return base::OkStatus();
+}
+
+void ModbusTcpService::Stop() {
+  for (Client& client : clients_) {
+    if (client.pcb != nullptr) Abort(client);
+  }
+  if (listener_ != nullptr) {
+    tcp_arg(listener_, nullptr);
+    tcp_accept(listener_, nullptr);
+    tcp_close(listener_);  // a listening PCB is always freed
+    listener_ = nullptr;
+  }
+}
+
+void ModbusTcpService::Poll(hal::Micros now) {
+  server_.Poll(now);
+  for (Client& client : clients_) {
+    if (client.pcb != nullptr) static_cast<void>(Flush(client));
+  }
+}
+
+hal::Micros ModbusTcpService::NextDeadline() const {
+  // Answers completed by the drive (in another service's Poll) go out on the next pass, at once.
+  for (const Client& client : clients_) {
+    if (client.pcb == nullptr) continue;
+    if (server_.MustClose(client.id)) return 0;
+    if (!client.stalled && !server_.PendingOutput(client.id).empty()) return 0;
+  }
+  return server_.NextDeadline();
+}
+
+// tcp_accept_fn: "Only return ERR_ABRT if you have called tcp_abort from within the callback".
+err_t ModbusTcpService::OnAccept(void* arg, tcp_pcb* pcb, err_t err) {
+  if (arg == nullptr || pcb == nullptr || err != ERR_OK) return ERR_VAL;
+  return static_cast<ModbusTcpService*>(arg)->Accept(pcb);
+}
+
+err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
+  const base::Result<modbus::ConnectionId> id = server_.Open(PeerAddress(pcb), clock_.NowMicros());
+  if (!id.ok()) {
+    // Every slot is taken: reset this one, the others are not touched.
+    ++counters_.refused;
+    tcp_abort(pcb);
+    return ERR_ABRT;
+  }
+  Client& client = clients_[*id];
+  client = Client{this, pcb, *id, false};
+  tcp_arg(pcb, &client);
+  tcp_recv(pcb, &ModbusTcpService::OnRecv);
+  tcp_sent(pcb, &ModbusTcpService::OnSent);
+  tcp_err(pcb, &ModbusTcpService::OnError);
+  tcp_poll(pcb, &ModbusTcpService::OnPoll, kPollInterval);
+  // Request/response: an answer must not wait for the previous one's acknowledgement.
+  tcp_nagle_disable(pcb);
+  ip_set_option(pcb, SOF_KEEPALIVE);
+  ++counters_.accepted;
+  return ERR_OK;
+}
+
+// tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
+// A NULL pbuf: the remote host closed the connection.
+err_t ModbusTcpService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
+  auto* client = static_cast<Client*>(arg);
+  if (client == nullptr || client->pcb != pcb) {
+    // Not ours any more (detached): behave like lwIP's tcp_recv_null.
+    if (p != nullptr) {
+      tcp_recved(pcb, p->tot_len);
+      pbuf_free(p);
+    }
+    return ERR_OK;
+  }
+  if (err != ERR_OK && p != nullptr) {
+    pbuf_free(p);
+    return ERR_OK;
+  }
+  return client->service->Receive(*client, p);
+}
+
+err_t ModbusTcpService::Receive(Client& client, pbuf* p) {
+  if (p == nullptr) {
+    // The client is done. Requests it left unanswered are dropped with the connection.
+    ++counters_.closed_by_peer;
+    return Close(client);
+  }
+  const hal::Micros now = clock_.NowMicros();
+  bool all_taken = true;
+  for (const pbuf* q = p; q != nullptr && all_taken; q = q->next) {
+    const std::span<const std::uint8_t> bytes(static_cast<const std::uint8_t*>(q->payload), q->len);
+    all_taken = server_.Receive(client.id, bytes, now) == bytes.size();
+  }
+  pbuf_free(p);
+  if (!all_taken) {
+    // Cannot happen while the window fits the server's buffer (static_assert above).
+    Abort(client);
+    return ERR_ABRT;
+  }
+  return Flush(client);
+}
+
+err_t ModbusTcpService::OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
+  static_cast<void>(length);
+  auto* client = static_cast<Client*>(arg);
+  if (client == nullptr || client->pcb != pcb) return ERR_OK;
+  client->stalled = false;
+  return client->service->Flush(*client);
+}
+
+err_t ModbusTcpService::OnPoll(void* arg, tcp_pcb* pcb) {
+  auto* client = static_cast<Client*>(arg);
+  if (client == nullptr || client->pcb != pcb) return ERR_OK;
+  client->stalled = false;
+  return client->service->Flush(*client);
+}
+
+// tcp_err_fn: the PCB is already freed; only our state is.
+void ModbusTcpService::OnError(void* arg, err_t err) {
+  static_cast<void>(err);
+  auto* client = static_cast<Client*>(arg);
+  if (client == nullptr || client->pcb == nullptr) return;
+  ModbusTcpService& service = *client->service;
+  ++service.counters_.lost;
+  client->pcb = nullptr;
+  service.server_.Close(client->id);
+}
+
+err_t ModbusTcpService::Flush(Client& client) {
+  const hal::Micros now = clock_.NowMicros();
+  bool progress = true;
+  while (progress) {
+    progress = false;
+    // Reopen the window by what the server is done with.
+    for (std::size_t released = server_.TakeReleasedInput(client.id); released > 0;) {
+      const auto chunk = static_cast<u16_t>(std::min<std::size_t>(released, 0xFFFF));
+      tcp_recved(client.pcb, chunk);
+      released -= chunk;
+    }
+    const std::span<const std::uint8_t> answers = server_.PendingOutput(client.id);
+    if (answers.empty()) break;
+    const std::size_t in_flight = TCP_SND_BUF - tcp_sndbuf(client.pcb);
+    std::size_t room = in_flight >= kMaxUnacknowledgedBytes ? 0 : kMaxUnacknowledgedBytes - in_flight;
+    if (tcp_sndqueuelen(client.pcb) >= kMaxQueuedSegments) room = 0;
+    const std::size_t count = std::min({answers.size(), room, static_cast<std::size_t>(tcp_sndbuf(client.pcb))});
+    if (count == 0) {
+      client.stalled = true;
+      break;
+    }
+    if (tcp_write(client.pcb, answers.data(), static_cast<u16_t>(count), TCP_WRITE_FLAG_COPY) != ERR_OK) {
+      ++counters_.write_errors;
+      client.stalled = true;
+      break;
+    }
+    tcp_output(client.pcb);
+    // Taking answers out may let the server serve the next request at once.
+    server_.ConsumeOutput(client.id, count, now);
+    progress = true;
+  }
+  if (server_.MustClose(client.id)) {
+    ++counters_.closed_by_card;
+    return Close(client);
+  }
+  return ERR_OK;
+}
+
+err_t ModbusTcpService::Close(Client& client) {
+  tcp_pcb* pcb = client.pcb;
+  Detach(pcb);
+  client.pcb = nullptr;
+  server_.Close(client.id);
+  // FIN after the data already queued; when lwIP has no memory for the FIN, reset instead.
+  if (tcp_close(pcb) != ERR_OK) {
+    tcp_abort(pcb);
+    return ERR_ABRT;
+  }
+  return ERR_OK;
+}
+
+void ModbusTcpService::Abort(Client& client) {
+  tcp_pcb* pcb = client.pcb;
+  Detach(pcb);
+  client.pcb = nullptr;
+  server_.Close(client.id);
+  tcp_abort(pcb);
+}
+
+// Nulls every callback first (tcpecho_raw's rule): lwIP must not call into a slot being reused.
+void ModbusTcpService::Detach(tcp_pcb* pcb) {
+  tcp_arg(pcb, nullptr);
+  tcp_recv(pcb, nullptr);
+  tcp_sent(pcb, nullptr);
+  tcp_err(pcb, nullptr);
+  tcp_poll(pcb, nullptr, 0);
+}
+
+}  // namespace firmware

@@ -1,0 +1,107 @@
+// The Modbus TCP server (modbus::Server) bound to lwIP's raw TCP API: a listener on port 502, one
+// lwIP PCB per client, bytes between the PCBs and the server. docs/modbus.md "TCP" has the rules.
+//
+// - Listens while c500 = 0 (Modbus TCP); c500 = 1 (EtherNet/IP) closes the port and resets every
+//   connection (Configure). A closed port answers a connection attempt with RST (lwIP).
+// - At most modbus::Server::kMaxClients (8) clients. The 9th is accepted by TCP (lwipopts.h keeps PCBs
+//   for that) and reset at once from the accept callback; the others do not notice.
+// - Received pbufs are copied into the server at once and freed; the receive window is reopened by the
+//   bytes the server has finished with (the server's buffer is as large as the window, so nothing is
+//   ever refused back to lwIP and no receive pbuf stays with this service).
+// - Answers are written with tcp_write (copied) while at most kMaxUnacknowledgedBytes (two largest
+//   answers) in kMaxQueuedSegments segments wait for the peer's acknowledgement: what lwipopts.h sizes
+//   the heap and the segment pool for. The rest waits in the server, which stops serving that client
+//   while its answer buffer is full (backpressure).
+// - Dead peers: TCP keepalive on every connection (lwipopts.h: 60 s idle, 6 probes 10 s apart), and the
+//   server's idle rule (no request for two minutes). A connection the server gives up (framing error,
+//   idle) is closed with FIN after its last answers.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "base/status.h"
+#include "drive_link/card_config.h"
+#include "event_loop.h"
+#include "hal/clock.h"
+#include "lwip/tcp.h"
+#include "modbus/server.h"
+
+namespace firmware {
+
+struct ModbusTcpOptions {
+  std::uint16_t port = 502;
+};
+
+struct ModbusTcpCounters {
+  std::uint32_t accepted = 0;        // connections handed to the server
+  std::uint32_t refused = 0;         // reset at once: every slot taken
+  std::uint32_t closed_by_peer = 0;  // FIN from the client
+  std::uint32_t closed_by_card = 0;  // the server gave the connection up (framing error, idle)
+  std::uint32_t lost = 0;            // lwIP dropped the connection (RST, keepalive, retransmissions)
+  std::uint32_t write_errors = 0;    // tcp_write refused (no memory): retried later
+};
+
+class ModbusTcpService final : public Service {
+ public:
+  // In flight per connection: two largest Modbus answers, in at most two segments (lwipopts.h sizes
+  // the heap, IPE_TCP_PEER_RESPONSE_BYTES, and MEMP_NUM_TCP_SEG for that). Answers a pipelining client
+  // is owed meanwhile wait in the server and leave together in the next segment.
+  static constexpr std::size_t kMaxUnacknowledgedBytes = 2 * modbus::kMaxAduBytes;
+  static constexpr std::size_t kMaxQueuedSegments = 2;
+
+  ModbusTcpService(modbus::Server& server, const hal::Clock& clock, const ModbusTcpOptions& options = {})
+      : server_(server), clock_(clock), options_(options) {}
+  ~ModbusTcpService() override { Stop(); }
+  ModbusTcpService(const ModbusTcpService&) = delete;
+  ModbusTcpService& operator=(const ModbusTcpService&) = delete;
+
+  // Hands the configuration to the server and opens (c500 = 0) or closes (c500 = 1) the port.
+  base::Status Configure(const drive_link::CardConfig& config);
+  // Listens on the port (no-op when listening). kResourceExhausted: no PCB; kFailedPrecondition: the
+  // port is taken.
+  base::Status Start();
+  // Closes the port and resets every connection.
+  void Stop();
+  bool listening() const { return listener_ != nullptr; }
+
+  void Poll(hal::Micros now) override;
+  hal::Micros NextDeadline() const override;
+
+  const ModbusTcpCounters& counters() const { return counters_; }
+
+ private:
+  struct Client {
+    ModbusTcpService* service = nullptr;
+    tcp_pcb* pcb = nullptr;
+    modbus::ConnectionId id = 0;
+    // The last attempt to hand answers to TCP could not write everything: wait for an acknowledgement
+    // (sent callback) or lwIP's poll instead of asking the loop to come back at once.
+    bool stalled = false;
+  };
+
+  static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
+  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err);
+  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length);
+  static err_t OnPoll(void* arg, tcp_pcb* pcb);
+  static void OnError(void* arg, err_t err);
+
+  err_t Accept(tcp_pcb* pcb);
+  err_t Receive(Client& client, pbuf* p);
+  // Reopens the window, hands answers to TCP, closes the connection when the server says so. Returns
+  // ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
+  err_t Flush(Client& client);
+  err_t Close(Client& client);
+  void Abort(Client& client);
+  static void Detach(tcp_pcb* pcb);
+
+  modbus::Server& server_;
+  const hal::Clock& clock_;
+  ModbusTcpOptions options_;
+  tcp_pcb* listener_ = nullptr;
+  std::array<Client, modbus::Server::kMaxClients> clients_{};
+  ModbusTcpCounters counters_;
+};
+
+}  // namespace firmware
