@@ -1,0 +1,161 @@
+// The card's side of the encapsulation protocol on TCP and UDP 44818: TCP connections and their
+// sessions, the commands and their replies, discovery over UDP with the delayed broadcast ListIdentity,
+// and the per-connection inactivity timeout. Bytes in, decisions and bytes out; the lwIP binding owns
+// the sockets and calls:
+//
+//   OpenTcpConnection    when it accepts a connection (kResourceExhausted: abort it, no slot)
+//   OnTcpData            with received bytes, repeatedly until every byte is consumed; sends `reply`
+//                        (if any) in order, and closes the connection when `close` is set
+//   CloseTcpConnection   when the connection is gone (closed by either side, reset, error)
+//   OnUdpDatagram        with each datagram on UDP 44818; sends the reply now, later, or not at all
+//   NextDeadline         to know when to call TakeDueDatagram / TakeExpiredConnection
+//
+// Decisions (docs/ethernetip.md lists them with their reasons):
+// - At most kMaxSessions sessions; the 9th RegisterSession gets 0x0002 and changes nothing else. Up to
+//   kMaxTcpConnections TCP connections, so that connections beyond the session limit still get that
+//   answer (and can use ListIdentity) instead of a reset.
+// - One session per TCP connection; a second RegisterSession on it gets 0x0001 with the existing handle.
+// - Session handles are random, non-zero and unique, and valid only on the connection that registered
+//   them: anything else gets 0x0064.
+// - A message whose header options field is not 0 is dropped without a reply.
+// - NOP is never answered; a valid UnRegisterSession is not answered and closes the connection.
+// - A TCP connection without traffic for kTcpInactivityTimeout is closed, unless its session still owns
+//   CIP connections (ConnectedMessageHandler::SessionHasConnections).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "base/status.h"
+#include "cip/encapsulation.h"
+#include "cip/explicit_messaging.h"
+#include "cip/tcp_message_assembler.h"
+#include "hal/clock.h"
+#include "hal/random.h"
+
+namespace cip {
+
+inline constexpr std::size_t kMaxSessions = 8;
+inline constexpr std::size_t kMaxTcpConnections = kMaxSessions + 2;
+// The TCP/IP object's default encapsulation inactivity timeout (its attribute 13, which the card does
+// not expose); lwIP's keepalive finds dead peers independently.
+inline constexpr hal::Micros kTcpInactivityTimeout = 120 * hal::kMicrosPerSecond;
+// Broadcast ListIdentity replies waiting for their random delay; more are dropped (the originator
+// repeats its request, and a scanner never sends more than a few per second).
+inline constexpr std::size_t kMaxDelayedReplies = 2;
+// The maximum delay of a broadcast ListIdentity reply is bytes 0-1 of the sender context, in ms;
+// 0 means 2000 ms and 1-499 mean 500 ms (the rule the ODVA stacks follow, e.g. OpENer).
+inline constexpr hal::Micros kDefaultListIdentityMaxDelay = 2000 * hal::kMicrosPerMilli;
+inline constexpr hal::Micros kMinListIdentityMaxDelay = 500 * hal::kMicrosPerMilli;
+// Every reply fits this many bytes (the lwIP binding must be able to queue one such reply).
+inline constexpr std::size_t kMaxReplyMessage = kMaxEncapsulationMessage;
+
+// What the card says about itself in ListIdentity (the composition root builds it from the Identity
+// object and the TCP/IP interface).
+class DiscoverySource {
+ public:
+  virtual ~DiscoverySource() = default;
+  virtual IdentityItem ListIdentity() const = 0;
+};
+
+struct TcpConnectionId {
+  std::uint8_t index = 0;
+  constexpr bool operator==(const TcpConnectionId&) const = default;
+};
+
+struct TcpStep {
+  std::size_t consumed = 0;             // bytes of the input taken; call again with the rest
+  std::span<const std::uint8_t> reply;  // send first (valid until the next OnTcpData)
+  bool close = false;                   // then close the connection and call CloseTcpConnection
+};
+
+struct UdpSource {
+  Ipv4Endpoint peer;
+  bool broadcast = false;  // sent to a broadcast or multicast address
+};
+
+struct UdpDecision {
+  enum class Action : std::uint8_t { kDrop, kSendNow, kSendLater };
+  Action action = Action::kDrop;
+  std::span<const std::uint8_t> reply;  // kSendNow: valid until the next OnUdpDatagram/TakeDueDatagram
+  hal::Micros send_at = 0;              // kSendLater: TakeDueDatagram hands it out from this time on
+};
+
+struct DueDatagram {
+  Ipv4Endpoint to;
+  std::span<const std::uint8_t> bytes;  // valid until the next OnUdpDatagram/TakeDueDatagram
+};
+
+class EncapsulationServer {
+ public:
+  EncapsulationServer(UnconnectedMessageHandler& router, const DiscoverySource& discovery,
+                      hal::RandomSource& random);
+
+  // The connection manager, once it exists; without one, SendUnitData is never answered.
+  void set_connected_handler(ConnectedMessageHandler* handler) { connected_ = handler; }
+
+  base::Result<TcpConnectionId> OpenTcpConnection(Ipv4Endpoint peer, hal::Micros now);
+  void CloseTcpConnection(TcpConnectionId id);
+  // Consumes input up to the end of the first complete message and answers it. An unknown id consumes
+  // everything and asks for the connection to be closed.
+  TcpStep OnTcpData(TcpConnectionId id, std::span<const std::uint8_t> input, hal::Micros now);
+
+  UdpDecision OnUdpDatagram(std::span<const std::uint8_t> datagram, const UdpSource& source, hal::Micros now);
+  // Hands out one delayed reply that is due at `now`; false when none is.
+  bool TakeDueDatagram(hal::Micros now, DueDatagram& out);
+  // Names one connection whose inactivity timeout has run out at `now` (each only once); the binding
+  // closes it and calls CloseTcpConnection. False when none has.
+  bool TakeExpiredConnection(hal::Micros now, TcpConnectionId& out);
+  // The earliest delayed reply or inactivity timeout, hal::kNever when there is none.
+  hal::Micros NextDeadline() const;
+
+  std::size_t session_count() const;
+  std::size_t connection_count() const;
+
+ private:
+  struct Connection {
+    bool open = false;
+    bool expiry_reported = false;
+    Ipv4Endpoint peer;
+    std::uint32_t session_handle = 0;  // 0: no session registered on this connection
+    hal::Micros last_activity = 0;
+    TcpMessageAssembler assembler;
+  };
+  struct DelayedReply {
+    bool pending = false;
+    Ipv4Endpoint to;
+    EncapsulationHeader request;
+    hal::Micros due = 0;
+  };
+
+  Connection* Find(TcpConnectionId id);
+  TcpStep Answer(Connection& connection, hal::Micros now);
+  // Each writes the complete reply into tcp_reply_ and returns its size; 0 means no reply.
+  std::size_t RegisterSession(Connection& connection, const EncapsulationHeader& request,
+                              std::span<const std::uint8_t> body);
+  std::size_t SendRRData(Connection& connection, const EncapsulationHeader& request,
+                         std::span<const std::uint8_t> body, hal::Micros now);
+  std::size_t SendUnitData(Connection& connection, const EncapsulationHeader& request,
+                           std::span<const std::uint8_t> body, hal::Micros now);
+  std::uint32_t NewSessionHandle();
+  bool HandleInUse(std::uint32_t handle) const;
+  void EndSession(Connection& connection);
+  std::size_t ScheduleListIdentity(const EncapsulationHeader& request, const UdpSource& source,
+                                   hal::Micros now, hal::Micros& send_at);
+
+  UnconnectedMessageHandler& router_;
+  const DiscoverySource& discovery_;
+  hal::RandomSource& random_;
+  ConnectedMessageHandler* connected_ = nullptr;
+  std::array<Connection, kMaxTcpConnections> connections_{};
+  std::array<DelayedReply, kMaxDelayedReplies> delayed_{};
+  std::array<std::uint8_t, kMaxReplyMessage> tcp_reply_{};
+  std::array<std::uint8_t, kMaxReplyMessage> udp_reply_{};
+};
+
+// Writes a reply with no data: the request's header echoed with `status` and length 0.
+std::size_t EncodeEmptyReply(const EncapsulationHeader& request, EncapStatus status, std::span<std::uint8_t> out);
+
+}  // namespace cip
