@@ -24,8 +24,9 @@ enum class AccessError : std::uint8_t {
   kNoSuchRegister,           // a number ending A-F (refused locally) or the inverter's 0002
   kOutOfRange,               // the inverter's 0001 "data error"
   kNotWritableWhileRunning,  // the inverter's 0000 on a parameter write while the drive runs
-  kReadOnly,                 // a monitor (FC00-FEFF) or a value the card owns (c502/c503, c517-c522,
-                             // c524-c536, c555, c041-c046, c061-c066): refused locally
+  kReadOnly,                 // a monitor (FC00-FEFF), a value the card owns (c502/c503, c517-c522,
+                             // c524-c536, c555, c041-c046, c061-c066) or FA30 (the card's fault
+                             // line): refused locally
   kReservedForScanner,       // a command register the cyclic exchange owns (IO scanning, §9.1)
   kRefused,                  // the inverter's 0000 otherwise, or 0003 "command error"
   kLinkDown,                 // option fault e-23 or configuration not loaded yet: nothing was sent
@@ -80,8 +81,9 @@ using ScannerWords = std::array<std::uint16_t, kScannerWordCount>;
 class ScannerImage {
  public:
   virtual ~ScannerImage() = default;
-  // The master's newest command words. The exchange sends a word when it changed, and refreshes all of
-  // them every cycle of the link (a RAM write; never EEPROM).
+  // The master's newest command words. The exchange sends a word when it changed, and refreshes each
+  // word in use at a slower rate (RegisterProxy: ProxyConfig::command_refresh_interval); always a RAM
+  // write, never EEPROM. Nothing is written before the first call since start/reset.
   virtual void SetCommandWords(const ScannerWords& words) = 0;
   virtual ScannerWords CommandWords() const = 0;
   // The newest monitor words read from the inverter.

@@ -60,6 +60,8 @@ inline constexpr std::uint16_t kFa51 = 0xFA51;  // FM analog output data
 inline constexpr std::uint16_t kFa30 = 0xFA30;
 
 // --- Monitors ---
+inline constexpr std::uint16_t kFb05 = 0xFB05;  // inverter model (capacity) code
+inline constexpr std::uint16_t kFe08 = 0xFE08;  // CPU1 version
 inline constexpr std::uint16_t kFc90 = 0xFC90;  // trip code in force
 inline constexpr std::uint16_t kFc91 = 0xFC91;  // alarm bits
 inline constexpr std::uint16_t kFd00 = 0xFD00;  // output frequency, 0.01 Hz
