@@ -102,6 +102,7 @@ std::size_t Split(std::string_view text, std::string_view (&words)[kMaxWords]) {
 constexpr char kHelp[] =
     "help                   this list\n"
     "stats                  counters: event loop, netif, ports, lwIP protocols and pools\n"
+    "config                 the configuration read from the inverter and its problems\n"
     "leds                   current LED colours\n"
     "link L|R up|down       plug or unplug the cable of port L or R\n"
     "power-cycle            power-cycle the inverter and restart the card (state dir kept)\n";
@@ -148,6 +149,9 @@ void HandleControlCommand(std::string_view command, std::string& reply, const Ca
     reply += kSimControlHelp;
   } else if (verb == "stats" && count == 1) {
     AppendStats(report, reply);
+    if (report.drive != nullptr) AppendDriveStats(*report.drive, reply);
+  } else if (verb == "config" && count == 1 && report.drive != nullptr) {
+    AppendDriveConfig(*report.drive, reply);
   } else if (verb == "leds" && count == 1) {
     reply += report.leds.Describe() + "\n";
   } else if (verb == "power-cycle" && count == 1) {

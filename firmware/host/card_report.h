@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "card_netif.h"
+#include "drive_report.h"
 #include "event_loop.h"
 #include "hal/reset.h"
 #include "logging_leds.h"
@@ -21,6 +22,8 @@ struct CardReport {
   firmware::EventLoop& loop;
   hal::host::LoggingLeds& leds;
   hal::host::PollWaiter& waiter;
+  // The drive link, register proxy and Modbus server; null in tests of the network side alone.
+  const DriveReport* drive = nullptr;
 };
 
 using SetPlugged = std::function<base::Status(hal::PortId, bool)>;

@@ -7,6 +7,11 @@
 
 #include "capturing_frame_port.h"
 #include "card_netif.h"
+#include "card_status_publisher.h"
+#include "drive_link/register_proxy.h"
+#include "modbus/server.h"
+#include "modbus_tcp_service.h"
+#include "polled_service.h"
 #include "card_report.h"
 #include "control_server.h"
 #include "event_loop.h"
@@ -31,6 +36,10 @@ namespace {
 // The card's own NV records. The MAC is factory data: a real card has it burnt in; the host card
 // makes up a locally administered one on first start and keeps it in the state dir.
 constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
+
+// The card's firmware version as FC 43 and unit 251 show it ("0106": V1.06, the version of the card
+// this one imitates, seed 000 §8.8).
+constexpr std::uint16_t kFirmwareVersion = 0x0106;
 
 hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
   hal::MacAddress mac{};
@@ -179,12 +188,30 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   firmware::LinkLeds link_leds(*port, leds);
   loop.AddService(link_leds).IgnoreError();
   loop.AddService(*inverter).IgnoreError();  // stores the inverter's EEPROM image when due
-  // The drive link plugs in here: a service over *card_serial, added with loop.AddService.
+
+  // The drive link and the front ends (docs/drive-link.md, docs/modbus.md). The register proxy owns the
+  // link on the card's end of the serial line; the Modbus server reaches the drive only through it; the
+  // publisher keeps c502-c536 and the option-board data current and hands each configuration read from
+  // the inverter to the Modbus service (c500 opens or closes port 502).
+  drive_link::RegisterProxy proxy(*card_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{});
+  firmware::PolledService<drive_link::RegisterProxy> proxy_service(proxy);
+  modbus::Server modbus_server(proxy, proxy, proxy);
+  firmware::ModbusTcpService modbus_service(modbus_server, clock);
+  firmware::CardStatusPublisher publisher(proxy, modbus_server, modbus_service, netif, kFirmwareVersion);
+  proxy.SetConfigListener(&publisher);
+  if (base::Status started = proxy.Start(clock.NowMicros()); !started.ok()) {
+    error = std::string("drive link: ") + base::StatusName(started);
+    return CardExit::kFailed;
+  }
+  loop.AddService(proxy_service).IgnoreError();
+  loop.AddService(modbus_service).IgnoreError();
+  loop.AddService(publisher).IgnoreError();
 
   SignalSource signals;
   waiter.Register(signals);
 
-  CardReport report{netif, loop, leds, waiter};
+  const DriveReport drive_report{proxy, modbus_server, modbus_service};
+  CardReport report{netif, loop, leds, waiter, &drive_report};
   std::unique_ptr<ControlServer> control;
   if (!options.sim_control_path.empty()) {
     control = std::make_unique<ControlServer>(
@@ -198,12 +225,15 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   bool ready_printed = false;
   while (!signals.stop_requested() && !reset.pending().has_value()) {
     loop.RunOnce();
-    if (!ready_printed && netif.link_up()) {
-      std::printf("ready ip=%s mac=%s net=%s %s control=%s state=%s\n", FormatIpv4(options.ip).c_str(),
+    // Ready once the front ends run with the configuration read from the inverter (or the drive link
+    // has given up: e-23, the card runs without a drive).
+    const bool drive_settled = proxy.config_loaded() || proxy.link().state() == drive_link::LinkState::kFault;
+    if (!ready_printed && netif.link_up() && drive_settled) {
+      std::printf("ready ip=%s mac=%s net=%s %s control=%s state=%s drive=%s\n", FormatIpv4(options.ip).c_str(),
                   FormatMac(mac).c_str(), options.net == NetKind::kTap ? "tap" : "loopback",
                   network.endpoints.c_str(),
                   options.sim_control_path.empty() ? "-" : options.sim_control_path.c_str(),
-                  options.state_dir.c_str());
+                  options.state_dir.c_str(), drive_link::LinkStateName(proxy.link().state()));
       std::fflush(stdout);
       ready_printed = true;
     }

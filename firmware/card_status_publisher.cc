@@ -1,0 +1,127 @@
+#include "card_status_publisher.h"
+
+#include "drive_link/drive_registers.h"
+#include "lwip/netif.h"
+
+namespace firmware {
+namespace {
+
+// FB05 model codes of the drives the simulator models (registers.csv: the VF-S11 pattern, 2007 -> 04H,
+// 2037 -> 09H). The VF-MB1/S15 code table is not in our sources; another code is shown as its number.
+struct KnownDrive {
+  std::uint16_t fb05;
+  const char* product_code;
+  const char* product_name;
+};
+constexpr KnownDrive kKnownDrives[] = {
+    {0x04, "VFMB1S-2007PL", "VF-MB1"},
+    {0x09, "VFS15-2037PM", "VF-S15"},
+};
+
+char HexDigit(unsigned value) { return "0123456789ABCDEF"[value & 0xF]; }
+
+std::array<std::uint8_t, 4> Octets(const ip4_addr_t* address) {
+  // lwIP keeps addresses in network byte order: the first octet is the lowest byte in memory.
+  const std::uint32_t a = address == nullptr ? 0 : address->addr;
+  const auto* bytes = reinterpret_cast<const std::uint8_t*>(&a);
+  return {bytes[0], bytes[1], bytes[2], bytes[3]};
+}
+
+}  // namespace
+
+std::uint16_t PortRateCode(const hal::LinkState& link) {
+  if (!link.up) return 0;
+  switch (link.speed) {
+    case hal::LinkSpeed::k10Mbps:
+      return link.full_duplex ? 1 : 2;
+    case hal::LinkSpeed::k100Mbps:
+      return link.full_duplex ? 3 : 4;
+    default:
+      return 3;
+  }
+}
+
+DriveIdentity DescribeDrive(std::uint16_t fb05, std::uint16_t fe08) {
+  DriveIdentity identity;
+  char version[4] = {HexDigit(fe08 >> 12), HexDigit(fe08 >> 8), HexDigit(fe08 >> 4), HexDigit(fe08)};
+  identity.version.Set(std::string_view(version, sizeof version));
+  for (const KnownDrive& drive : kKnownDrives) {
+    if (drive.fb05 == fb05) {
+      identity.product_code.Set(drive.product_code);
+      identity.product_name.Set(drive.product_name);
+      return identity;
+    }
+  }
+  char code[7] = {'F', 'B', '0', '5', '=', HexDigit(fb05 >> 4), HexDigit(fb05)};
+  identity.product_code.Set(std::string_view(code, sizeof code));
+  identity.product_name.Set("VF-MB1/S15");
+  return identity;
+}
+
+CardStatusPublisher::CardStatusPublisher(drive_link::RegisterProxy& proxy, modbus::Server& modbus_server,
+                                         ModbusTcpService& modbus_service, CardNetif& netif,
+                                         std::uint16_t firmware_version)
+    : proxy_(proxy), modbus_server_(modbus_server), modbus_service_(modbus_service), netif_(netif) {
+  board_.firmware_version = firmware_version;
+}
+
+drive_link::CardStatus CardStatusPublisher::CurrentStatus() {
+  drive_link::CardStatus status;
+  hal::FramePort& port = netif_.port();
+  for (std::size_t i = 0; i < status.port_rates.size(); ++i) {
+    if (i < port.PortCount()) status.port_rates[i] = PortRateCode(port.Link(static_cast<hal::PortId>(i)));
+  }
+  status.mac = port.Mac();
+  netif& nif = netif_.lwip_netif();
+  status.ip = Octets(netif_ip4_addr(&nif));
+  status.netmask = Octets(netif_ip4_netmask(&nif));
+  status.gateway = Octets(netif_ip4_gw(&nif));
+  return status;
+}
+
+void CardStatusPublisher::Poll(hal::Micros now) {
+  if (now < next_publish_) return;
+  next_publish_ = now + kPublishInterval;
+  drive_link::CardStatus status = CurrentStatus();
+  proxy_.SetCardStatus(status);
+  status.ethernet_error = proxy_.ethernet_error();
+  board_.status = status;
+  board_.drive_link = proxy_.link().state();
+  modbus_server_.SetBoardData(board_);
+  if (modbus_pending_) modbus_pending_ = !modbus_service_.Configure(config_).ok();
+  if (identity_wanted_ && identity_token_ == drive_link::kNoAccess) RequestIdentity();
+}
+
+void CardStatusPublisher::OnConfigLoaded(const drive_link::ParsedConfig& parsed) {
+  config_ = parsed.config;
+  modbus_pending_ = !modbus_service_.Configure(config_).ok();  // no PCB free: retried at each publish
+  identity_wanted_ = true;
+  identity_step_ = 0;
+  next_publish_ = 0;  // publish at once: the inverter was reset and shows nothing of the card yet
+}
+
+void CardStatusPublisher::RequestIdentity() {
+  const std::uint16_t number = identity_step_ == 0 ? drive_link::reg::kFb05 : drive_link::reg::kFe08;
+  const base::Result<drive_link::AccessToken> token = proxy_.Read(number, *this);
+  if (token.ok()) identity_token_ = *token;  // otherwise busy or link down: the next publish retries
+}
+
+void CardStatusPublisher::OnAccessDone(drive_link::AccessToken token, const drive_link::AccessResult& result) {
+  if (token != identity_token_) return;
+  identity_token_ = drive_link::kNoAccess;
+  if (!result.ok()) return;  // retried at the next publish
+  if (identity_step_ == 0) {
+    fb05_ = result.value;
+    identity_step_ = 1;
+    RequestIdentity();
+    return;
+  }
+  const DriveIdentity identity = DescribeDrive(fb05_, result.value);
+  board_.drive_product_code = identity.product_code;
+  board_.drive_version = identity.version;
+  board_.drive_product_name = identity.product_name;
+  identity_wanted_ = false;
+  modbus_server_.SetBoardData(board_);
+}
+
+}  // namespace firmware

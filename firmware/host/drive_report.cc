@@ -1,0 +1,110 @@
+#include "drive_report.h"
+
+#include <cstdio>
+
+namespace host {
+namespace {
+
+void Line(std::string& out, const std::string& name, std::uint64_t value) {
+  out += name + "=" + std::to_string(value) + "\n";
+}
+
+std::string Hex4(std::uint16_t value) {
+  char text[8];
+  std::snprintf(text, sizeof text, "%04X", value);
+  return text;
+}
+
+std::string Dotted(const std::array<std::uint8_t, 4>& a) {
+  return std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) + "." +
+         std::to_string(a[3]);
+}
+
+const char* ProblemKindName(drive_link::ConfigProblem::Kind kind) {
+  switch (kind) {
+    case drive_link::ConfigProblem::Kind::kReservedMenu:
+      return "reserved-menu";
+    case drive_link::ConfigProblem::Kind::kOutOfRange:
+      return "out-of-range";
+    case drive_link::ConfigProblem::Kind::kUnreadable:
+      return "unreadable";
+  }
+  return "?";
+}
+
+template <typename Array>
+std::string List(const Array& values) {
+  std::string text;
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? "," : "") + std::to_string(values[i]);
+  return text;
+}
+
+}  // namespace
+
+void AppendDriveStats(const DriveReport& report, std::string& out) {
+  const drive_link::LinkClient& link = report.proxy.link();
+  out += std::string("drive.link=") + drive_link::LinkStateName(link.state()) + "\n";
+  const drive_link::LinkCounters& l = link.counters();
+  Line(out, "drive.frames_sent", l.frames_sent);
+  Line(out, "drive.replies", l.replies);
+  Line(out, "drive.retries", l.retries);
+  Line(out, "drive.timeouts", l.timeouts);
+  Line(out, "drive.error_replies", l.error_replies);
+  Line(out, "drive.garbled_frames", l.garbled_frames);
+  Line(out, "drive.faults", l.faults);
+  const drive_link::ProxyCounters& p = report.proxy.counters();
+  Line(out, "proxy.config_loads", p.config_loads);
+  Line(out, "proxy.config_problems", report.proxy.parsed_config().problems_total);
+  Line(out, "proxy.cycles", p.cycles);
+  Line(out, "proxy.cycle_period_us", static_cast<std::uint64_t>(p.cycle_period_last));
+  Line(out, "proxy.command_writes", p.command_writes);
+  Line(out, "proxy.monitor_reads", p.monitor_reads);
+  Line(out, "proxy.block_reads", p.block_reads);
+  Line(out, "proxy.owned_writes", p.owned_writes);
+  Line(out, "proxy.loss_actions", p.loss_actions);
+  Line(out, "proxy.accesses", p.accesses);
+  Line(out, "proxy.accesses_ok", p.accesses_ok);
+  Line(out, "proxy.fd01", report.proxy.drive_status());
+  Line(out, "proxy.c536", report.proxy.ethernet_error());
+  Line(out, "proxy.loss_action_active", report.proxy.loss_action_active() ? 1 : 0);
+  const modbus::ServerCounters& m = report.modbus_server.counters();
+  Line(out, "modbus.listening", report.modbus_service.listening() ? 1 : 0);
+  Line(out, "modbus.clients", report.modbus_server.open_connections());
+  Line(out, "modbus.accepted", m.accepted);
+  Line(out, "modbus.refused", m.refused);
+  Line(out, "modbus.requests", m.requests);
+  Line(out, "modbus.exceptions", m.exceptions);
+  Line(out, "modbus.framing_errors", m.framing_errors);
+  Line(out, "modbus.idle_closes", m.idle_closes);
+  Line(out, "modbus.loss_state", static_cast<std::uint64_t>(report.modbus_server.loss_state()));
+}
+
+void AppendDriveConfig(const DriveReport& report, std::string& out) {
+  const drive_link::ParsedConfig& parsed = report.proxy.parsed_config();
+  const drive_link::CardConfig& c = parsed.config;
+  Line(out, "loaded", report.proxy.config_loaded() ? 1 : 0);
+  out += "command_menus=" + List(c.command_menus) + "\n";
+  out += "monitor_menus=" + List(c.monitor_menus) + "\n";
+  out += std::string("device_name=") + c.device_name.data() + "\n";
+  Line(out, "c100", c.loss_delay_tenths);
+  Line(out, "c101", c.loss_action);
+  Line(out, "c102", c.loss_preset_speed);
+  Line(out, "c103", c.loss_condition);
+  Line(out, "c500", static_cast<std::uint64_t>(c.protocol));
+  Line(out, "c501", c.rate_setting);
+  Line(out, "c504", static_cast<std::uint64_t>(c.ip_mode));
+  out += "ip=" + Dotted(c.ip) + " netmask=" + Dotted(c.netmask) + " gateway=" + Dotted(c.gateway) + "\n";
+  Line(out, "c523", c.timeout_tenths);
+  Line(out, "c554", c.web_server ? 1 : 0);
+  out += "modbus_master=" + Dotted(c.modbus_master) + "\n";
+  Line(out, "c604", c.io_scanning ? 1 : 0);
+  Line(out, "cmod", c.cmod);
+  Line(out, "fmod", c.fmod);
+  for (std::size_t i = 0; i < parsed.problem_count; ++i) {
+    const drive_link::ConfigProblem& problem = parsed.problems[i];
+    out += "problem=" + Hex4(problem.number) + " " + std::to_string(problem.value) + " " +
+           ProblemKindName(problem.kind) + "\n";
+  }
+}
+
+}  // namespace host
