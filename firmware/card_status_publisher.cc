@@ -21,10 +21,8 @@ constexpr KnownDrive kKnownDrives[] = {
 char HexDigit(unsigned value) { return "0123456789ABCDEF"[value & 0xF]; }
 
 std::array<std::uint8_t, 4> Octets(const ip4_addr_t* address) {
-  // lwIP keeps addresses in network byte order: the first octet is the lowest byte in memory.
-  const std::uint32_t a = address == nullptr ? 0 : address->addr;
-  const auto* bytes = reinterpret_cast<const std::uint8_t*>(&a);
-  return {bytes[0], bytes[1], bytes[2], bytes[3]};
+  if (address == nullptr) return {};
+  return {ip4_addr1(address), ip4_addr2(address), ip4_addr3(address), ip4_addr4(address)};
 }
 
 }  // namespace

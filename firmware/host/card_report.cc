@@ -17,12 +17,7 @@ constexpr const char* kPoolNames[] = {
 };
 static_assert(sizeof(kPoolNames) / sizeof(kPoolNames[0]) == MEMP_MAX);
 
-void Line(std::string& out, const std::string& name, std::uint64_t value) {
-  out += name;
-  out += '=';
-  out += std::to_string(value);
-  out += '\n';
-}
+void Line(std::string& out, const std::string& name, std::uint64_t value) { AppendLine(out, name, value); }
 
 void AppendProto(std::string& out, const char* name, const stats_proto& p) {
   const std::string prefix = std::string("lwip.") + name + ".";
@@ -108,6 +103,13 @@ constexpr char kHelp[] =
     "power-cycle            power-cycle the inverter and restart the card (state dir kept)\n";
 
 }  // namespace
+
+void AppendLine(std::string& out, const std::string& name, std::uint64_t value) {
+  out += name;
+  out += '=';
+  out += std::to_string(value);
+  out += '\n';
+}
 
 void AppendStats(const CardReport& report, std::string& out) {
   const firmware::LoopStats& loop = report.loop.stats();

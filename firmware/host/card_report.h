@@ -3,6 +3,7 @@
 // from the assembly in host_card.cc.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -27,6 +28,9 @@ struct CardReport {
 };
 
 using SetPlugged = std::function<base::Status(hal::PortId, bool)>;
+
+// Appends one `name=value` line: the format of every `stats` counter.
+void AppendLine(std::string& out, const std::string& name, std::uint64_t value);
 
 // Appends `name=value` lines: event loop, netif, per-port counters, every lwIP protocol and pool
 // counter. Pool lines read lwip.memp.<POOL>.used/max/avail/err.

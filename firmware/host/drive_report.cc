@@ -2,12 +2,12 @@
 
 #include <cstdio>
 
+#include "card_report.h"
+
 namespace host {
 namespace {
 
-void Line(std::string& out, const std::string& name, std::uint64_t value) {
-  out += name + "=" + std::to_string(value) + "\n";
-}
+void Line(std::string& out, const std::string& name, std::uint64_t value) { AppendLine(out, name, value); }
 
 std::string Hex4(std::uint16_t value) {
   char text[8];

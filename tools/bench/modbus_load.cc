@@ -11,7 +11,7 @@
 #include <modbus/modbus.h>
 
 #include <algorithm>
-#include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
