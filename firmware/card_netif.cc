@@ -17,6 +17,9 @@ ip4_addr_t ToLwip(std::uint32_t host_order) {
   return address;
 }
 
+// Broadcast and multicast destinations have the group bit (bit 0 of the first octet) set.
+bool IsGroupAddress(std::span<const std::uint8_t> frame) { return !frame.empty() && (frame[0] & 0x01) != 0; }
+
 }  // namespace
 
 CardNetif::~CardNetif() {
@@ -61,10 +64,18 @@ err_t CardNetif::LinkOutput(pbuf* p) {
   }
   const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
   const std::span<const std::uint8_t> bytes(frame.data(), length);
+  const bool group = IsGroupAddress(bytes);
   bool sent = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
     const auto id = static_cast<hal::PortId>(i);
-    if (port_.Link(id).up && port_.Transmit(id, bytes).ok()) sent = true;
+    if (!port_.Link(id).up) continue;
+    PortTraffic& traffic = traffic_[i];
+    if (port_.Transmit(id, bytes).ok()) {
+      sent = true;
+      ++(group ? traffic.out_nucast : traffic.out_ucast);
+    } else {
+      ++traffic.out_discards;
+    }
   }
   if (!sent) {
     ++counters_.tx_dropped;
@@ -87,9 +98,12 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
       continue;
     }
     const auto length = static_cast<u16_t>(received->length);
+    PortTraffic& traffic = traffic_[hal::PortIndex(received->port)];
+    ++(IsGroupAddress(std::span<const std::uint8_t>(frame.data(), length)) ? traffic.in_nucast : traffic.in_ucast);
     pbuf* p = pbuf_alloc(PBUF_RAW, length, PBUF_POOL);
     if (p == nullptr) {
       ++counters_.rx_dropped_no_pbuf;
+      ++traffic.in_discards;
       continue;
     }
     pbuf_take(p, frame.data(), length);

@@ -10,6 +10,7 @@
 // only copies them into the port.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -32,6 +33,18 @@ struct NetifCounters {
   std::uint64_t tx_dropped = 0;          // no port with link, or every port refused the frame
 };
 
+// Per switch port, what the Ethernet Link object (0xF6) counts beyond the port's own octets and errors:
+// frames by destination kind (bit 0 of the destination MAC set: broadcast or multicast) and frames
+// dropped for lack of a buffer (in) or refused by the port (out).
+struct PortTraffic {
+  std::uint64_t in_ucast = 0;
+  std::uint64_t in_nucast = 0;
+  std::uint64_t in_discards = 0;
+  std::uint64_t out_ucast = 0;
+  std::uint64_t out_nucast = 0;
+  std::uint64_t out_discards = 0;
+};
+
 class CardNetif {
  public:
   explicit CardNetif(hal::FramePort& port) : port_(port) {}
@@ -51,6 +64,7 @@ class CardNetif {
 
   bool link_up() const;
   const NetifCounters& counters() const { return counters_; }
+  const PortTraffic& traffic(hal::PortId port) const { return traffic_[hal::PortIndex(port)]; }
   netif& lwip_netif() { return netif_; }
   hal::FramePort& port() { return port_; }
 
@@ -63,6 +77,7 @@ class CardNetif {
   netif netif_{};
   bool added_ = false;
   NetifCounters counters_;
+  std::array<PortTraffic, hal::kMaxPorts> traffic_{};
 };
 
 }  // namespace firmware

@@ -57,10 +57,20 @@ DriveIdentity DescribeDrive(std::uint16_t fb05, std::uint16_t fe08) {
 }
 
 CardStatusPublisher::CardStatusPublisher(drive_link::RegisterProxy& proxy, modbus::Server& modbus_server,
-                                         ModbusTcpService& modbus_service, CardNetif& netif,
-                                         std::uint16_t firmware_version)
-    : proxy_(proxy), modbus_server_(modbus_server), modbus_service_(modbus_service), netif_(netif) {
+                                         std::span<ConfigurableService* const> front_ends, CardNetif& netif,
+                                         std::uint16_t firmware_version, DriveIdentitySink* identity_sink)
+    : proxy_(proxy), modbus_server_(modbus_server), netif_(netif), identity_sink_(identity_sink) {
+  for (ConfigurableService* front_end : front_ends) {
+    if (front_end != nullptr && front_end_count_ < front_ends_.size()) front_ends_[front_end_count_++] = front_end;
+  }
   board_.firmware_version = firmware_version;
+}
+
+void CardStatusPublisher::ConfigureFrontEnds(bool only_pending) {
+  for (std::size_t i = 0; i < front_end_count_; ++i) {
+    if (only_pending && !pending_[i]) continue;
+    pending_[i] = !front_ends_[i]->Configure(config_).ok();  // no PCB free: retried at each publish
+  }
 }
 
 drive_link::CardStatus CardStatusPublisher::CurrentStatus() {
@@ -86,13 +96,15 @@ void CardStatusPublisher::Poll(hal::Micros now) {
   board_.status = status;
   board_.drive_link = proxy_.link().state();
   modbus_server_.SetBoardData(board_);
-  if (modbus_pending_) modbus_pending_ = !modbus_service_.Configure(config_).ok();
+  ConfigureFrontEnds(/*only_pending=*/true);
   if (identity_wanted_ && identity_token_ == drive_link::kNoAccess) RequestIdentity();
 }
 
 void CardStatusPublisher::OnConfigLoaded(const drive_link::ParsedConfig& parsed) {
   config_ = parsed.config;
-  modbus_pending_ = !modbus_service_.Configure(config_).ok();  // no PCB free: retried at each publish
+  // Closing one protocol's ports first frees PCBs for the other's listeners: the order of the front
+  // ends does not matter, a refusal is retried at the next publish.
+  ConfigureFrontEnds(/*only_pending=*/false);
   identity_wanted_ = true;
   identity_step_ = 0;
   next_publish_ = 0;  // publish at once: the inverter was reset and shows nothing of the card yet
@@ -120,6 +132,7 @@ void CardStatusPublisher::OnAccessDone(drive_link::AccessToken token, const driv
   board_.drive_product_name = identity.product_name;
   identity_wanted_ = false;
   modbus_server_.SetBoardData(board_);
+  if (identity_sink_ != nullptr) identity_sink_->OnDriveIdentity(fb05_, result.value);
 }
 
 }  // namespace firmware

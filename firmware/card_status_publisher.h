@@ -3,22 +3,25 @@
 // - every kPublishInterval: the actual rates of the L/R ports (c502/c503), the MAC (c517-c522) and the
 //   address in use (c524-c535) go to the register proxy, which writes back what changed; the same values,
 //   the drive-link state and c536 go to the Modbus server's option-board data (unit 251, FC 43);
-// - after each configuration load (start-up, f899 = 1, link recovery): the configuration goes to the
-//   Modbus service (which opens or closes port 502 by c500), and the drive's identity is read once
-//   (FB05 model code, FE08 CPU version) for FC 43 on unit 248.
+// - after each configuration load (start-up, f899 = 1, link recovery): the configuration goes to every
+//   front end (the Modbus and EtherNet/IP services open or close their ports by c500), and the drive's
+//   identity is read once (FB05 model code, FE08 CPU version) for FC 43 on unit 248 and for the
+//   DriveIdentitySink (the CIP Identity object's product code and name).
 //
 // Device-path code: no allocation; the firmware's composition root owns every object referenced here.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <span>
 
 #include "card_netif.h"
+#include "configurable_service.h"
 #include "drive_link/register_proxy.h"
 #include "event_loop.h"
 #include "hal/frame_port.h"
 #include "modbus/option_board.h"
 #include "modbus/server.h"
-#include "modbus_tcp_service.h"
 
 namespace firmware {
 
@@ -42,8 +45,12 @@ class CardStatusPublisher final : public Service,
  public:
   static constexpr hal::Micros kPublishInterval = 100 * hal::kMicrosPerMilli;
 
+  static constexpr std::size_t kMaxFrontEnds = 6;
+
+  // At most kMaxFrontEnds front ends (more are ignored); `identity_sink` may be null.
   CardStatusPublisher(drive_link::RegisterProxy& proxy, modbus::Server& modbus_server,
-                      ModbusTcpService& modbus_service, CardNetif& netif, std::uint16_t firmware_version);
+                      std::span<ConfigurableService* const> front_ends, CardNetif& netif,
+                      std::uint16_t firmware_version, DriveIdentitySink* identity_sink = nullptr);
 
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override { return next_publish_; }
@@ -55,15 +62,18 @@ class CardStatusPublisher final : public Service,
  private:
   void OnAccessDone(drive_link::AccessToken token, const drive_link::AccessResult& result) override;
   void RequestIdentity();
+  void ConfigureFrontEnds(bool only_pending);
   drive_link::CardStatus CurrentStatus();
 
   drive_link::RegisterProxy& proxy_;
   modbus::Server& modbus_server_;
-  ModbusTcpService& modbus_service_;
   CardNetif& netif_;
+  DriveIdentitySink* identity_sink_ = nullptr;
+  std::array<ConfigurableService*, kMaxFrontEnds> front_ends_{};
+  std::size_t front_end_count_ = 0;
   modbus::OptionBoardData board_;
   drive_link::CardConfig config_;  // the last configuration loaded
-  bool modbus_pending_ = false;    // the Modbus service refused it (no PCB): try again
+  std::array<bool, kMaxFrontEnds> pending_{};  // a front end refused it (no PCB): try again
   hal::Micros next_publish_ = 0;
 
   // The identity reads: FB05 then FE08, one at a time; retried at the next publish when refused.

@@ -6,6 +6,7 @@
 
 #include "lwip/ip.h"
 #include "lwipopts.h"
+#include "tcp_pcb_util.h"
 
 namespace firmware {
 namespace {
@@ -105,7 +106,7 @@ err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
   tcp_poll(pcb, &ModbusTcpService::OnPoll, kPollInterval);
   // Request/response: an answer must not wait for the previous one's acknowledgement.
   tcp_nagle_disable(pcb);
-  ip_set_option(pcb, SOF_KEEPALIVE);
+  ApplyKeepalive(pcb, options_.keepalive);
   ++counters_.accepted;
   return ERR_OK;
 }
@@ -216,7 +217,7 @@ err_t ModbusTcpService::Flush(Client& client) {
 
 err_t ModbusTcpService::Close(Client& client) {
   tcp_pcb* pcb = client.pcb;
-  Detach(pcb);
+  DetachTcpCallbacks(pcb);
   client.pcb = nullptr;
   server_.Close(client.id);
   // FIN after the data already queued; when lwIP has no memory for the FIN, reset instead.
@@ -229,19 +230,10 @@ err_t ModbusTcpService::Close(Client& client) {
 
 void ModbusTcpService::Abort(Client& client) {
   tcp_pcb* pcb = client.pcb;
-  Detach(pcb);
+  DetachTcpCallbacks(pcb);
   client.pcb = nullptr;
   server_.Close(client.id);
   tcp_abort(pcb);
-}
-
-// Nulls every callback first (tcpecho_raw's rule): lwIP must not call into a slot being reused.
-void ModbusTcpService::Detach(tcp_pcb* pcb) {
-  tcp_arg(pcb, nullptr);
-  tcp_recv(pcb, nullptr);
-  tcp_sent(pcb, nullptr);
-  tcp_err(pcb, nullptr);
-  tcp_poll(pcb, nullptr, 0);
 }
 
 }  // namespace firmware

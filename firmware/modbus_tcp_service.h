@@ -12,9 +12,10 @@
 //   answers) in kMaxQueuedSegments segments wait for the peer's acknowledgement: what lwipopts.h sizes
 //   the heap and the segment pool for. The rest waits in the server, which stops serving that client
 //   while its answer buffer is full (backpressure).
-// - Dead peers: TCP keepalive on every connection (lwipopts.h: 60 s idle, 6 probes 10 s apart), and the
-//   server's idle rule (no request for two minutes). A connection the server gives up (framing error,
-//   idle) is closed with FIN after its last answers.
+// - Dead peers: TCP keepalive on every connection (ModbusTcpOptions::keepalive, by default lwipopts.h's
+//   60 s idle, 6 probes 10 s apart; dropped: counters().lost), and the server's idle rule (no request
+//   for two minutes). A connection the server gives up (framing error, idle) is closed with FIN after
+//   its last answers.
 #pragma once
 
 #include <array>
@@ -22,16 +23,19 @@
 #include <cstdint>
 
 #include "base/status.h"
+#include "configurable_service.h"
 #include "drive_link/card_config.h"
 #include "event_loop.h"
 #include "hal/clock.h"
 #include "lwip/tcp.h"
 #include "modbus/server.h"
+#include "tcp_keepalive.h"
 
 namespace firmware {
 
 struct ModbusTcpOptions {
   std::uint16_t port = 502;
+  TcpKeepalive keepalive;  // on every connection (a vanished peer frees its slot)
 };
 
 struct ModbusTcpCounters {
@@ -43,7 +47,7 @@ struct ModbusTcpCounters {
   std::uint32_t write_errors = 0;    // tcp_write refused (no memory): retried later
 };
 
-class ModbusTcpService final : public Service {
+class ModbusTcpService final : public Service, public ConfigurableService {
  public:
   // In flight per connection: two largest Modbus answers, in at most two segments (lwipopts.h sizes
   // the heap, IPE_TCP_PEER_RESPONSE_BYTES, and MEMP_NUM_TCP_SEG for that). Answers a pipelining client
@@ -58,7 +62,7 @@ class ModbusTcpService final : public Service {
   ModbusTcpService& operator=(const ModbusTcpService&) = delete;
 
   // Hands the configuration to the server and opens (c500 = 0) or closes (c500 = 1) the port.
-  base::Status Configure(const drive_link::CardConfig& config);
+  base::Status Configure(const drive_link::CardConfig& config) override;
   // Listens on the port (no-op when listening). kResourceExhausted: no PCB; kFailedPrecondition: the
   // port is taken.
   base::Status Start();
@@ -94,7 +98,6 @@ class ModbusTcpService final : public Service {
   err_t Flush(Client& client);
   err_t Close(Client& client);
   void Abort(Client& client);
-  static void Detach(tcp_pcb* pcb);
 
   modbus::Server& server_;
   const hal::Clock& clock_;

@@ -76,7 +76,25 @@ void AppendDriveStats(const DriveReport& report, std::string& out) {
   Line(out, "modbus.exceptions", m.exceptions);
   Line(out, "modbus.framing_errors", m.framing_errors);
   Line(out, "modbus.idle_closes", m.idle_closes);
+  Line(out, "modbus.lost", report.modbus_service.counters().lost);
   Line(out, "modbus.loss_state", static_cast<std::uint64_t>(report.modbus_server.loss_state()));
+  const firmware::EipCounters& e = report.eip_service.counters();
+  Line(out, "eip.listening", report.eip_service.listening() ? 1 : 0);
+  Line(out, "eip.connections", report.encapsulation.connection_count());
+  Line(out, "eip.sessions", report.encapsulation.session_count());
+  Line(out, "eip.accepted", e.accepted);
+  Line(out, "eip.refused", e.refused);
+  Line(out, "eip.closed_by_peer", e.closed_by_peer);
+  Line(out, "eip.closed_by_card", e.closed_by_card);
+  Line(out, "eip.lost", e.lost);
+  Line(out, "eip.write_stalls", e.write_stalls);
+  Line(out, "eip.udp_received", e.udp_received);
+  Line(out, "eip.udp_sent", e.udp_sent);
+  Line(out, "eip.udp_dropped", e.udp_dropped);
+  const firmware::ParameterWriterCounters& w = report.parameter_writer.counters();
+  Line(out, "params.pending", report.parameter_writer.pending());
+  Line(out, "params.written", w.written);
+  Line(out, "params.failed", w.failed);
 }
 
 void AppendDriveConfig(const DriveReport& report, std::string& out) {

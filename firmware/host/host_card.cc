@@ -1,5 +1,6 @@
 #include "host_card.h"
 
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -9,8 +10,11 @@
 #include "card_netif.h"
 #include "card_report.h"
 #include "card_status_publisher.h"
+#include "cip/cip_device.h"
+#include "cip_providers.h"
 #include "control_server.h"
 #include "drive_link/register_proxy.h"
+#include "eip_service.h"
 #include "event_loop.h"
 #include "file_nv_store.h"
 #include "host_clock.h"
@@ -21,6 +25,7 @@
 #include "lwip_port.h"
 #include "modbus/server.h"
 #include "modbus_tcp_service.h"
+#include "parameter_writer.h"
 #include "pcap_writer.h"
 #include "poll_waiter.h"
 #include "polled_service.h"
@@ -40,6 +45,9 @@ constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
 // The card's firmware version as FC 43 and unit 251 show it ("0106": V1.06, the version of the card
 // this one imitates, seed 000 §8.8).
 constexpr std::uint16_t kFirmwareVersion = 0x0106;
+
+// How long a requested reset waits for queued parameter writes (32 writes take well under a second).
+constexpr hal::Micros kResetDrainLimit = 3 * hal::kMicrosPerSecond;
 
 hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
   hal::MacAddress mac{};
@@ -196,8 +204,22 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   drive_link::RegisterProxy proxy(*card_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{});
   firmware::PolledService<drive_link::RegisterProxy> proxy_service(proxy);
   modbus::Server modbus_server(proxy, proxy, proxy);
-  firmware::ModbusTcpService modbus_service(modbus_server, clock);
-  firmware::CardStatusPublisher publisher(proxy, modbus_server, modbus_service, netif, kFirmwareVersion);
+  firmware::ModbusTcpService modbus_service(modbus_server, clock, {.port = 502, .keepalive = options.tcp_keepalive});
+
+  // The EtherNet/IP side (docs/ethernetip.md): the CIP objects on the card's providers, the
+  // encapsulation server bound to TCP/UDP 44818. Settings the CIP objects store go to the inverter's
+  // c-parameters through the parameter writer, or to the card's own store.
+  firmware::ParameterWriter parameter_writer(proxy);
+  firmware::CardIdentity cip_identity(*port, proxy);
+  firmware::CardTcpIp cip_tcpip(netif, parameter_writer, *store.value());
+  firmware::CardEthernetLinks cip_links(netif, parameter_writer);
+  cip::CipDevice cip_device({cip_identity, cip_tcpip, cip_links, reset, random});
+  firmware::EipService eip_service(cip_device.encapsulation(), clock, {.keepalive = options.tcp_keepalive});
+
+  // Every configuration read from the inverter goes to these (c500 picks the protocol whose ports open).
+  const std::array<firmware::ConfigurableService*, 4> front_ends{&modbus_service, &eip_service, &cip_tcpip,
+                                                                 &cip_links};
+  firmware::CardStatusPublisher publisher(proxy, modbus_server, front_ends, netif, kFirmwareVersion, &cip_identity);
   proxy.SetConfigListener(&publisher);
   if (base::Status started = proxy.Start(clock.NowMicros()); !started.ok()) {
     error = std::string("drive link: ") + base::StatusName(started);
@@ -205,12 +227,15 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   }
   loop.AddService(proxy_service).IgnoreError();
   loop.AddService(modbus_service).IgnoreError();
+  loop.AddService(eip_service).IgnoreError();
+  loop.AddService(parameter_writer).IgnoreError();
   loop.AddService(publisher).IgnoreError();
 
   SignalSource signals;
   waiter.Register(signals);
 
-  const DriveReport drive_report{proxy, modbus_server, modbus_service};
+  const DriveReport drive_report{proxy, modbus_server, modbus_service, cip_device.encapsulation(), eip_service,
+                                 parameter_writer};
   CardReport report{netif, loop, leds, waiter, &drive_report};
   std::unique_ptr<ControlServer> control;
   if (!options.sim_control_path.empty()) {
@@ -223,7 +248,15 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   }
 
   bool ready_printed = false;
-  while (!signals.stop_requested() && !reset.pending().has_value()) {
+  hal::Micros reset_deadline = hal::kNever;
+  while (!signals.stop_requested()) {
+    if (reset.pending().has_value()) {
+      // A reset waits, boundedly, for settings still on their way into the inverter's EEPROM (a
+      // Set_Attribute_Single followed by the Identity Reset must not lose the setting).
+      const hal::Micros now = clock.NowMicros();
+      if (reset_deadline == hal::kNever) reset_deadline = now + kResetDrainLimit;
+      if (parameter_writer.pending() == 0 || now >= reset_deadline) break;
+    }
     loop.RunOnce();
     // Ready once the front ends run with the configuration read from the inverter (or the drive link
     // has given up: e-23, the card runs without a drive).
@@ -239,6 +272,11 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
     }
   }
   inverter->SaveIfChanged();  // at exit and before a restart: the drive keeps what it was told
+  if (reset.pending() == hal::ResetKind::kFactoryDefaults) {
+    // Identity Reset type 1: the card's own settings go back to the out-of-box defaults. The factory
+    // data (MAC) stays; the configuration in the inverter (c-parameters) is the drive's, not the card's.
+    store.value()->Erase(firmware::kNvTcpIpExtras).IgnoreError();
+  }
   if (reset.pending().has_value()) {
     // Let the control socket deliver its answer before the process image is replaced.
     waiter.WaitUntil(clock.NowMicros());

@@ -92,6 +92,38 @@ bool ParseMilliseconds(const std::string& text, int& out) {
   return out <= 2000;
 }
 
+// An unsigned decimal of at most `digits` digits within [low, high].
+bool ParseBounded(std::string_view text, std::size_t digits, std::uint32_t low, std::uint32_t high,
+                  std::uint32_t& out) {
+  if (text.empty() || text.size() > digits) return false;
+  std::uint32_t value = 0;
+  for (char c : text) {
+    if (std::isdigit(static_cast<unsigned char>(c)) == 0) return false;
+    value = value * 10 + static_cast<std::uint32_t>(c - '0');
+  }
+  if (value < low || value > high) return false;
+  out = value;
+  return true;
+}
+
+// IDLE_MS,INTERVAL_MS,COUNT: idle and interval 100 ms .. 2 h, count 1..20.
+bool ParseKeepalive(std::string_view text, firmware::TcpKeepalive& out) {
+  constexpr std::uint32_t kMinMs = 100;
+  constexpr std::uint32_t kMaxMs = 7200000;
+  const std::size_t first = text.find(',');
+  if (first == std::string_view::npos) return false;
+  const std::size_t second = text.find(',', first + 1);
+  if (second == std::string_view::npos) return false;
+  std::uint32_t idle = 0, interval = 0, count = 0;
+  if (!ParseBounded(text.substr(0, first), 7, kMinMs, kMaxMs, idle) ||
+      !ParseBounded(text.substr(first + 1, second - first - 1), 7, kMinMs, kMaxMs, interval) ||
+      !ParseBounded(text.substr(second + 1), 2, 1, 20, count)) {
+    return false;
+  }
+  out = {idle, interval, static_cast<std::uint8_t>(count)};
+  return true;
+}
+
 }  // namespace
 
 bool ParseIpv4(const std::string& text, std::uint32_t& out) {
@@ -122,6 +154,11 @@ const char* HostUsage() {
          "  --state-dir DIR                    persistent state (default: a fresh temporary dir)\n"
          "  --pcap FILE                        capture every frame in and out\n"
          "  --sim-control PATH                 UNIX control socket (line protocol; 'help' lists it)\n"
+         "  --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT\n"
+         "                                     TCP keepalive of the card's connections (for tests): first\n"
+         "                                     probe after IDLE_MS idle, then every INTERVAL_MS, dropped\n"
+         "                                     after COUNT unanswered (IDLE_MS and INTERVAL_MS 100-7200000,\n"
+         "                                     COUNT 1-20; default 60000,10000,6)\n"
          "simulated inverter (its EEPROM is kept in DIR/inverter/MODEL.eeprom):\n"
          "  --model vf-mb1|vf-s15              inverter model (default vf-mb1); each model has its own file\n"
          "  --param NAME|COMMNO=VALUE          preset a parameter (acc=50, 0009=50, c500=1; value in the\n"
@@ -171,6 +208,8 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
       if (ok) options.model = *model;
     } else if (flag == "--sim-processing-ms") {
       ok = ParseMilliseconds(value, options.sim_processing_ms);
+    } else if (flag == "--tcp-keepalive") {
+      ok = ParseKeepalive(value, options.tcp_keepalive);
     } else if (flag == "--pcap") {
       options.pcap_path = value;
     } else if (flag == "--sim-control") {

@@ -27,6 +27,10 @@ TEST(HostOptions, NoArguments_LoopbackWithSlirpDefaults) {
   EXPECT_TRUE(o.params.empty());
   EXPECT_FALSE(o.rs485_profile);
   EXPECT_EQ(o.sim_processing_ms, -1);
+  // lwipopts.h's keepalive: 60 s idle, 10 s apart, 6 probes.
+  EXPECT_EQ(o.tcp_keepalive.idle_ms, 60000u);
+  EXPECT_EQ(o.tcp_keepalive.interval_ms, 10000u);
+  EXPECT_EQ(o.tcp_keepalive.count, 6u);
 }
 
 TEST(HostOptions, TwoTapPortsAndAddress_Parsed) {
@@ -88,6 +92,24 @@ TEST(HostOptions, SimulatorServerFlags) {
   EXPECT_EQ(o.sim_processing_ms, 7);
 }
 
+TEST(HostOptions, TcpKeepalive_Parsed) {
+  HostOptions o;
+  std::string error;
+  ASSERT_EQ(Parse({"--tcp-keepalive", "1000,500,3"}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_EQ(o.tcp_keepalive.idle_ms, 1000u);
+  EXPECT_EQ(o.tcp_keepalive.interval_ms, 500u);
+  EXPECT_EQ(o.tcp_keepalive.count, 3u);
+  // The bounds themselves are accepted.
+  ASSERT_EQ(Parse({"--tcp-keepalive", "100,7200000,20"}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_EQ(o.tcp_keepalive.idle_ms, 100u);
+  EXPECT_EQ(o.tcp_keepalive.interval_ms, 7200000u);
+  EXPECT_EQ(o.tcp_keepalive.count, 20u);
+  ASSERT_EQ(Parse({"--tcp-keepalive", "7200000,100,1"}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_EQ(o.tcp_keepalive.idle_ms, 7200000u);
+  EXPECT_EQ(o.tcp_keepalive.interval_ms, 100u);
+  EXPECT_EQ(o.tcp_keepalive.count, 1u);
+}
+
 TEST(HostOptions, BadValues_ErrorNamesTheFlag) {
   const std::vector<std::pair<std::vector<const char*>, std::string>> cases = {
       {{"--net", "eth0"}, "invalid value for --net: 'eth0'"},
@@ -117,6 +139,19 @@ TEST(HostOptions, BadValues_ErrorNamesTheFlag) {
        "not host-writable))"},
       {{"--sim-processing-ms", "2001"}, "invalid value for --sim-processing-ms: '2001'"},
       {{"--sim-processing-ms", "-1"}, "invalid value for --sim-processing-ms: '-1'"},
+      {{"--tcp-keepalive", "1000,500"}, "invalid value for --tcp-keepalive: '1000,500'"},
+      {{"--tcp-keepalive", "1000,500,3,4"}, "invalid value for --tcp-keepalive: '1000,500,3,4'"},
+      {{"--tcp-keepalive", "99,500,3"}, "invalid value for --tcp-keepalive: '99,500,3'"},
+      {{"--tcp-keepalive", "1000,99,3"}, "invalid value for --tcp-keepalive: '1000,99,3'"},
+      {{"--tcp-keepalive", "7200001,500,3"}, "invalid value for --tcp-keepalive: '7200001,500,3'"},
+      {{"--tcp-keepalive", "1000,7200001,3"}, "invalid value for --tcp-keepalive: '1000,7200001,3'"},
+      {{"--tcp-keepalive", "1000,500,0"}, "invalid value for --tcp-keepalive: '1000,500,0'"},
+      {{"--tcp-keepalive", "1000,500,21"}, "invalid value for --tcp-keepalive: '1000,500,21'"},
+      {{"--tcp-keepalive", "1000,,3"}, "invalid value for --tcp-keepalive: '1000,,3'"},
+      {{"--tcp-keepalive", "1000,500,"}, "invalid value for --tcp-keepalive: '1000,500,'"},
+      {{"--tcp-keepalive", "-1000,500,3"}, "invalid value for --tcp-keepalive: '-1000,500,3'"},
+      {{"--tcp-keepalive", "1000, 500,3"}, "invalid value for --tcp-keepalive: '1000, 500,3'"},
+      {{"--tcp-keepalive", "99999999999,500,3"}, "invalid value for --tcp-keepalive: '99999999999,500,3'"},
       {{"--frobnicate", "1"}, "unknown option --frobnicate"},
       {{"--pcap"}, "missing value for --pcap"},
       {{"stray"}, "unexpected argument stray"},
@@ -141,6 +176,7 @@ TEST(HostOptions, Help_SaysPresetsApplyToANewInverterOnly) {
   EXPECT_NE(usage.find("applied only while DIR has no usable file for the model"), std::string::npos);
   EXPECT_NE(usage.find("--rs485-profile"), std::string::npos);
   EXPECT_NE(usage.find("--sim-processing-ms N"), std::string::npos);
+  EXPECT_NE(usage.find("--tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT"), std::string::npos);
 }
 
 TEST(HostOptions, Ipv4_RoundTrip) {

@@ -105,6 +105,12 @@ inline constexpr std::uint16_t kReady = 1u << 14;
 // titles count in decimal, so 0009 (acc) is followed by 0010 (dec).
 constexpr bool HasDecimalLastDigit(std::uint16_t number) { return (number & 0x000F) <= 9; }
 
+// The communication number of the c-parameter titled cNNN: titles count in decimal and the number
+// shows the title's digits (c096 -> 0xC096, c510 -> 0xC510; seed 000 §3.1).
+constexpr std::uint16_t CParameter(unsigned title) {
+  return static_cast<std::uint16_t>(0xC000 | ((title / 100 % 10) << 8) | ((title / 10 % 10) << 4) | (title % 10));
+}
+
 // FCxx-FExx: monitors, read-only by nature. The card refuses writes to them without asking the inverter.
 constexpr bool IsMonitorNumber(std::uint16_t number) { return number >= 0xFC00 && number <= 0xFEFF; }
 

@@ -1,0 +1,343 @@
+#include "eip_service.h"
+
+#include <algorithm>
+#include <cstring>
+#include <span>
+
+#include "lwip/ip.h"
+#include "lwip/pbuf.h"
+
+namespace firmware {
+namespace {
+
+static_assert(cip::kMaxSessions == IPE_MAX_ENIP_SESSIONS, "lwipopts.h sizes pools for these sessions");
+// One reply in flight per connection is what lwipopts.h reserves heap for.
+static_assert(cip::kMaxReplyMessage <= IPE_TCP_PEER_RESPONSE_BYTES, "a reply must fit its heap share");
+
+// lwIP's poll callback runs every interval x 500 ms: a held reply is retried within a second.
+constexpr u8_t kPollInterval = 2;
+
+cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
+  return {lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address))), port};
+}
+
+}  // namespace
+
+base::Status EipService::Configure(const drive_link::CardConfig& config) {
+  if (config.protocol == drive_link::Protocol::kEtherNetIp) return Start();
+  Stop();
+  return base::OkStatus();
+}
+
+base::Status EipService::Start() {
+  if (listener_ != nullptr) return base::OkStatus();
+  udp_pcb* udp = udp_new_ip_type(IPADDR_TYPE_V4);
+  if (udp == nullptr) return base::ResourceExhausted();
+  if (udp_bind(udp, IP4_ADDR_ANY, options_.port) != ERR_OK) {
+    udp_remove(udp);
+    return base::FailedPrecondition();
+  }
+  tcp_pcb* pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
+  if (pcb == nullptr) {
+    udp_remove(udp);
+    return base::ResourceExhausted();
+  }
+  if (tcp_bind(pcb, IP4_ADDR_ANY, options_.port) != ERR_OK) {
+    tcp_close(pcb);
+    udp_remove(udp);
+    return base::FailedPrecondition();
+  }
+  err_t err = ERR_OK;
+  tcp_pcb* listener = tcp_listen_with_backlog_and_err(pcb, TCP_DEFAULT_LISTEN_BACKLOG, &err);
+  if (listener == nullptr) {
+    tcp_close(pcb);
+    udp_remove(udp);
+    return base::ResourceExhausted();
+  }
+  listener_ = listener;
+  tcp_arg(listener_, this);
+  tcp_accept(listener_, &EipService::OnAccept);
+  udp_ = udp;
+  udp_recv(udp_, &EipService::OnUdp, this);
+  return base::OkStatus();
+}
+
+void EipService::Stop() {
+  for (Connection& connection : connections_) {
+    if (connection.pcb != nullptr) Abort(connection);
+  }
+  if (listener_ != nullptr) {
+    tcp_arg(listener_, nullptr);
+    tcp_accept(listener_, nullptr);
+    tcp_close(listener_);  // a listening PCB is always freed
+    listener_ = nullptr;
+  }
+  if (udp_ != nullptr) {
+    udp_remove(udp_);
+    udp_ = nullptr;
+  }
+}
+
+void EipService::Poll(hal::Micros now) {
+  cip::DueDatagram due;
+  while (server_.TakeDueDatagram(now, due)) SendDatagram(due.to, due.bytes);
+  cip::TcpConnectionId expired;
+  while (server_.TakeExpiredConnection(now, expired)) {
+    if (Connection* connection = FindConnection(expired)) {
+      ++counters_.closed_by_card;
+      static_cast<void>(Close(*connection));
+    } else {
+      server_.CloseTcpConnection(expired);
+    }
+  }
+  for (Connection& connection : connections_) {
+    if (connection.pcb != nullptr && connection.input_size > 0) static_cast<void>(Serve(connection));
+  }
+}
+
+hal::Micros EipService::NextDeadline() const {
+  // Input the core has not taken yet goes in on the next pass as soon as a reply fits.
+  for (const Connection& connection : connections_) {
+    if (connection.pcb != nullptr && connection.input_size > 0 && CanTakeReply(connection)) return 0;
+  }
+  return server_.NextDeadline();
+}
+
+// tcp_accept_fn: "Only return ERR_ABRT if you have called tcp_abort from within the callback".
+err_t EipService::OnAccept(void* arg, tcp_pcb* pcb, err_t err) {
+  if (arg == nullptr || pcb == nullptr || err != ERR_OK) return ERR_VAL;
+  return static_cast<EipService*>(arg)->Accept(pcb);
+}
+
+err_t EipService::Accept(tcp_pcb* pcb) {
+  Connection* free_slot = nullptr;
+  for (Connection& connection : connections_) {
+    if (connection.pcb == nullptr) {
+      free_slot = &connection;
+      break;
+    }
+  }
+  const base::Result<cip::TcpConnectionId> id =
+      free_slot == nullptr ? base::Result<cip::TcpConnectionId>(base::ResourceExhausted())
+                           : server_.OpenTcpConnection(Endpoint(&pcb->remote_ip, pcb->remote_port),
+                                                       clock_.NowMicros());
+  if (!id.ok()) {
+    ++counters_.refused;
+    tcp_abort(pcb);
+    return ERR_ABRT;
+  }
+  Connection& connection = *free_slot;
+  connection.service = this;
+  connection.pcb = pcb;
+  connection.id = *id;
+  connection.input_size = 0;
+  connection.held_reply_size = 0;
+  connection.close_after_reply = false;
+  tcp_arg(pcb, &connection);
+  tcp_recv(pcb, &EipService::OnRecv);
+  tcp_sent(pcb, &EipService::OnSent);
+  tcp_err(pcb, &EipService::OnError);
+  tcp_poll(pcb, &EipService::OnPoll, kPollInterval);
+  // Request/response: a reply must not wait for the acknowledgement of the previous one.
+  tcp_nagle_disable(pcb);
+  ApplyKeepalive(pcb, options_.keepalive);
+  ++counters_.accepted;
+  return ERR_OK;
+}
+
+// tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
+err_t EipService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
+  auto* connection = static_cast<Connection*>(arg);
+  if (connection == nullptr || connection->pcb != pcb) {
+    // Not ours any more (detached): behave like lwIP's tcp_recv_null.
+    if (p != nullptr) {
+      tcp_recved(pcb, p->tot_len);
+      pbuf_free(p);
+    }
+    return ERR_OK;
+  }
+  if (err != ERR_OK && p != nullptr) {
+    pbuf_free(p);
+    return ERR_OK;
+  }
+  return connection->service->Receive(*connection, p);
+}
+
+err_t EipService::Receive(Connection& connection, pbuf* p) {
+  if (p == nullptr) {
+    // The client is done; requests it left unanswered go with the connection.
+    ++counters_.closed_by_peer;
+    return Close(connection);
+  }
+  // The window is reopened only by consumed bytes, so a window's worth always fits.
+  const std::size_t room = connection.input.size() - connection.input_size;
+  if (p->tot_len > room) {
+    pbuf_free(p);
+    Abort(connection);
+    return ERR_ABRT;
+  }
+  pbuf_copy_partial(p, connection.input.data() + connection.input_size, p->tot_len, 0);
+  connection.input_size += p->tot_len;
+  pbuf_free(p);
+  return Serve(connection);
+}
+
+bool EipService::CanTakeReply(const Connection& connection) const {
+  return connection.held_reply_size == 0 && !connection.close_after_reply &&
+         tcp_sndbuf(connection.pcb) >= cip::kMaxReplyMessage && tcp_sndqueuelen(connection.pcb) < TCP_SND_QUEUELEN;
+}
+
+bool EipService::WriteHeldReply(Connection& connection) {
+  if (connection.held_reply_size == 0) return true;
+  if (tcp_write(connection.pcb, connection.held_reply.data(), static_cast<u16_t>(connection.held_reply_size),
+                TCP_WRITE_FLAG_COPY) != ERR_OK) {
+    return false;
+  }
+  connection.held_reply_size = 0;
+  tcp_output(connection.pcb);
+  return true;
+}
+
+err_t EipService::Serve(Connection& connection) {
+  if (!WriteHeldReply(connection)) return ERR_OK;
+  if (connection.close_after_reply) {
+    ++counters_.closed_by_card;
+    return Close(connection);
+  }
+  const hal::Micros now = clock_.NowMicros();
+  std::size_t consumed_total = 0;
+  while (connection.input_size > consumed_total && CanTakeReply(connection)) {
+    const std::span<const std::uint8_t> input(connection.input.data() + consumed_total,
+                                              connection.input_size - consumed_total);
+    const cip::TcpStep step = server_.OnTcpData(connection.id, input, now);
+    consumed_total += step.consumed;
+    if (!step.reply.empty()) {
+      if (tcp_write(connection.pcb, step.reply.data(), static_cast<u16_t>(step.reply.size()),
+                    TCP_WRITE_FLAG_COPY) == ERR_OK) {
+        tcp_output(connection.pcb);
+      } else {
+        // The core's reply buffer is reused by the next call: keep a copy.
+        ++counters_.write_stalls;
+        std::memcpy(connection.held_reply.data(), step.reply.data(), step.reply.size());
+        connection.held_reply_size = step.reply.size();
+      }
+    }
+    if (step.close) {
+      connection.close_after_reply = true;
+      break;
+    }
+    if (step.consumed == 0 && step.reply.empty()) break;  // cannot happen with input left; be safe
+  }
+  if (consumed_total > 0) {
+    std::memmove(connection.input.data(), connection.input.data() + consumed_total,
+                 connection.input_size - consumed_total);
+    connection.input_size -= consumed_total;
+    tcp_recved(connection.pcb, static_cast<u16_t>(consumed_total));
+  }
+  if (connection.close_after_reply && connection.held_reply_size == 0) {
+    ++counters_.closed_by_card;
+    return Close(connection);
+  }
+  return ERR_OK;
+}
+
+err_t EipService::OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
+  static_cast<void>(length);
+  auto* connection = static_cast<Connection*>(arg);
+  if (connection == nullptr || connection->pcb != pcb) return ERR_OK;
+  return connection->service->Serve(*connection);
+}
+
+err_t EipService::OnPoll(void* arg, tcp_pcb* pcb) {
+  auto* connection = static_cast<Connection*>(arg);
+  if (connection == nullptr || connection->pcb != pcb) return ERR_OK;
+  return connection->service->Serve(*connection);
+}
+
+// tcp_err_fn: the PCB is already freed; only our state is left.
+void EipService::OnError(void* arg, err_t err) {
+  static_cast<void>(err);
+  auto* connection = static_cast<Connection*>(arg);
+  if (connection == nullptr || connection->pcb == nullptr) return;
+  EipService& service = *connection->service;
+  ++service.counters_.lost;
+  connection->pcb = nullptr;
+  service.server_.CloseTcpConnection(connection->id);
+}
+
+err_t EipService::Close(Connection& connection) {
+  tcp_pcb* pcb = connection.pcb;
+  DetachTcpCallbacks(pcb);
+  connection.pcb = nullptr;
+  server_.CloseTcpConnection(connection.id);
+  // FIN after the data already queued; when lwIP has no memory for the FIN, reset instead.
+  if (tcp_close(pcb) != ERR_OK) {
+    tcp_abort(pcb);
+    return ERR_ABRT;
+  }
+  return ERR_OK;
+}
+
+void EipService::Abort(Connection& connection) {
+  tcp_pcb* pcb = connection.pcb;
+  DetachTcpCallbacks(pcb);
+  connection.pcb = nullptr;
+  server_.CloseTcpConnection(connection.id);
+  tcp_abort(pcb);
+}
+
+EipService::Connection* EipService::FindConnection(cip::TcpConnectionId id) {
+  for (Connection& connection : connections_) {
+    if (connection.pcb != nullptr && connection.id == id) return &connection;
+  }
+  return nullptr;
+}
+
+void EipService::OnUdp(void* arg, udp_pcb* pcb, pbuf* p, const ip_addr_t* address, u16_t port) {
+  auto* service = static_cast<EipService*>(arg);
+  if (service == nullptr || service->udp_ != pcb) {
+    pbuf_free(p);
+    return;
+  }
+  service->ReceiveDatagram(p, address, port);
+}
+
+void EipService::ReceiveDatagram(pbuf* p, const ip_addr_t* address, u16_t port) {
+  ++counters_.udp_received;
+  if (p->tot_len > datagram_.size()) {
+    // Longer than any request the core accepts (it would drop it too).
+    ++counters_.udp_dropped;
+    pbuf_free(p);
+    return;
+  }
+  const std::size_t length = pbuf_copy_partial(p, datagram_.data(), p->tot_len, 0);
+  pbuf_free(p);
+  // Valid during the receive callback: where the datagram was sent to.
+  const ip_addr_t* destination = ip_current_dest_addr();
+  cip::UdpSource source;
+  source.peer = Endpoint(address, port);
+  source.broadcast = ip_addr_isbroadcast(destination, ip_current_input_netif()) || ip_addr_ismulticast(destination);
+  const cip::UdpDecision decision =
+      server_.OnUdpDatagram(std::span<const std::uint8_t>(datagram_.data(), length), source, clock_.NowMicros());
+  if (decision.action == cip::UdpDecision::Action::kSendNow) SendDatagram(source.peer, decision.reply);
+}
+
+void EipService::SendDatagram(const cip::Ipv4Endpoint& to, std::span<const std::uint8_t> bytes) {
+  if (udp_ == nullptr) return;
+  pbuf* p = pbuf_alloc(PBUF_TRANSPORT, static_cast<u16_t>(bytes.size()), PBUF_RAM);
+  if (p == nullptr) {
+    ++counters_.udp_dropped;
+    return;
+  }
+  pbuf_take(p, bytes.data(), static_cast<u16_t>(bytes.size()));
+  ip_addr_t address;
+  ip_addr_set_ip4_u32_val(address, lwip_htonl(to.address));
+  if (udp_sendto(udp_, p, &address, to.port) == ERR_OK) {
+    ++counters_.udp_sent;
+  } else {
+    ++counters_.udp_dropped;
+  }
+  pbuf_free(p);
+}
+
+}  // namespace firmware

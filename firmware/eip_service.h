@@ -1,0 +1,121 @@
+// The EtherNet/IP encapsulation server (cip::EncapsulationServer) bound to lwIP's raw API: a TCP
+// listener and a UDP PCB on port 44818, one lwIP PCB per TCP connection. docs/ethernetip.md "In the
+// firmware" has the rules.
+//
+// - Open while c500 = 1 (EtherNet/IP); c500 = 0 (Modbus TCP) closes both ports and resets every
+//   connection (Configure): the card speaks one protocol at a time (seed 000 §3.1 c500).
+// - At most cip::kMaxTcpConnections TCP connections; one more is accepted by TCP and reset at once.
+// - Received bytes are copied into the connection's input buffer and the pbuf is freed at once, so a
+//   client that stops reading its replies holds no receive pbuf (the pool belongs to every peer). The
+//   window is reopened only by bytes the core has consumed, so the buffer (TCP_WND bytes) never
+//   overflows.
+// - The core is fed only while its largest reply (cip::kMaxReplyMessage) fits into the send buffer;
+//   a reply tcp_write still refuses (no heap or segment) is kept in the connection and written first
+//   when lwIP acknowledges data or polls. Nothing is dropped: the client's requests wait in its window.
+// - UDP: each datagram is handed over whole (a longer one than any request is dropped and counted);
+//   replies go to the sender; delayed broadcast ListIdentity replies leave from Poll when due.
+// - Dead peers: TCP keepalive (TcpKeepalive) and the core's inactivity timeout.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "base/status.h"
+#include "cip/encapsulation_server.h"
+#include "configurable_service.h"
+#include "drive_link/card_config.h"
+#include "event_loop.h"
+#include "hal/clock.h"
+#include "lwip/tcp.h"
+#include "lwip/udp.h"
+#include "lwipopts.h"
+#include "tcp_keepalive.h"
+#include "tcp_pcb_util.h"
+
+namespace firmware {
+
+struct EipOptions {
+  std::uint16_t port = cip::kEncapsulationPort;  // TCP and UDP
+  TcpKeepalive keepalive;
+};
+
+struct EipCounters {
+  std::uint32_t accepted = 0;        // TCP connections handed to the core
+  std::uint32_t refused = 0;         // reset at once: every connection slot taken
+  std::uint32_t closed_by_peer = 0;  // FIN from the client
+  std::uint32_t closed_by_card = 0;  // the core closed it (UnRegisterSession, inactivity)
+  std::uint32_t lost = 0;            // lwIP dropped the connection (RST, keepalive, retransmissions)
+  std::uint32_t write_stalls = 0;    // tcp_write refused a reply (no memory): kept and retried
+  std::uint32_t udp_received = 0;
+  std::uint32_t udp_sent = 0;
+  std::uint32_t udp_dropped = 0;     // too long, or no memory for the reply
+};
+
+class EipService final : public Service, public ConfigurableService {
+ public:
+  EipService(cip::EncapsulationServer& server, const hal::Clock& clock, const EipOptions& options = {})
+      : server_(server), clock_(clock), options_(options) {}
+  ~EipService() override { Stop(); }
+  EipService(const EipService&) = delete;
+  EipService& operator=(const EipService&) = delete;
+
+  // Opens (c500 = 1) or closes (c500 = 0) the ports.
+  base::Status Configure(const drive_link::CardConfig& config) override;
+  // Listens on TCP and UDP (no-op when open). kResourceExhausted: no PCB; kFailedPrecondition: a port
+  // is taken. Nothing stays half open on failure.
+  base::Status Start();
+  // Closes both ports and resets every connection.
+  void Stop();
+  bool listening() const { return listener_ != nullptr; }
+
+  void Poll(hal::Micros now) override;
+  hal::Micros NextDeadline() const override;
+
+  const EipCounters& counters() const { return counters_; }
+
+ private:
+  struct Connection {
+    EipService* service = nullptr;
+    tcp_pcb* pcb = nullptr;
+    cip::TcpConnectionId id;
+    // Received, not yet consumed by the core (at most one window).
+    std::array<std::uint8_t, TCP_WND> input{};
+    std::size_t input_size = 0;
+    // A reply tcp_write refused, written before anything else.
+    std::array<std::uint8_t, cip::kMaxReplyMessage> held_reply{};
+    std::size_t held_reply_size = 0;
+    bool close_after_reply = false;
+  };
+
+  static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
+  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err);
+  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length);
+  static err_t OnPoll(void* arg, tcp_pcb* pcb);
+  static void OnError(void* arg, err_t err);
+  static void OnUdp(void* arg, udp_pcb* pcb, pbuf* p, const ip_addr_t* address, u16_t port);
+
+  err_t Accept(tcp_pcb* pcb);
+  err_t Receive(Connection& connection, pbuf* p);
+  // Feeds buffered input to the core while replies fit, writes them, closes when the core says so.
+  // Returns ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
+  err_t Serve(Connection& connection);
+  bool CanTakeReply(const Connection& connection) const;
+  bool WriteHeldReply(Connection& connection);
+  err_t Close(Connection& connection);
+  void Abort(Connection& connection);
+  Connection* FindConnection(cip::TcpConnectionId id);
+  void ReceiveDatagram(pbuf* p, const ip_addr_t* address, u16_t port);
+  void SendDatagram(const cip::Ipv4Endpoint& to, std::span<const std::uint8_t> bytes);
+
+  cip::EncapsulationServer& server_;
+  const hal::Clock& clock_;
+  EipOptions options_;
+  tcp_pcb* listener_ = nullptr;
+  udp_pcb* udp_ = nullptr;
+  std::array<Connection, cip::kMaxTcpConnections> connections_{};
+  std::array<std::uint8_t, cip::kMaxEncapsulationMessage> datagram_{};  // one received datagram
+  EipCounters counters_;
+};
+
+}  // namespace firmware

@@ -1,0 +1,286 @@
+// The firmware's CIP providers (firmware/cip_providers.h) and the parameter writer behind them, against
+// the register proxy and the real simulated inverter (register_proxy_fixture.h): what a Set of a TCP/IP
+// or Ethernet Link attribute stores in the inverter, what the card's own store keeps, and the Identity
+// status inputs.
+#include "cip_providers.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <vector>
+
+#include "fake_frame_port.h"
+#include "lwip_fixture.h"
+#include "parameter_writer.h"
+#include "register_proxy_fixture.h"
+
+namespace firmware {
+namespace {
+
+using drive_link::test::kMilli;
+using drive_link::test::kSecond;
+
+class MemoryNvStore final : public hal::NvStore {
+ public:
+  base::Result<std::size_t> Read(hal::NvRecordId id, std::span<std::uint8_t> out) override {
+    const auto it = records.find(id);
+    if (it == records.end()) return base::NotFound();
+    if (it->second.size() > out.size()) return base::OutOfRange();
+    std::copy(it->second.begin(), it->second.end(), out.begin());
+    return it->second.size();
+  }
+  base::Status Write(hal::NvRecordId id, std::span<const std::uint8_t> data) override {
+    ++writes;
+    records[id].assign(data.begin(), data.end());
+    return base::OkStatus();
+  }
+  base::Status Erase(hal::NvRecordId id) override {
+    records.erase(id);
+    return base::OkStatus();
+  }
+  std::map<hal::NvRecordId, std::vector<std::uint8_t>> records;
+  int writes = 0;
+};
+
+constexpr hal::MacAddress kMac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};
+
+class CipProvidersTest : public drive_link::test::RegisterProxyFixture {
+ protected:
+  CipProvidersTest() { hal::test::EnsureLwipInitialised(); }
+
+  void StartCard() {
+    StartLoaded();
+    writer_ = std::make_unique<ParameterWriter>(*proxy_);
+    identity_ = std::make_unique<CardIdentity>(port_, *proxy_);
+    tcpip_ = std::make_unique<CardTcpIp>(netif_, *writer_, store_);
+    links_ = std::make_unique<CardEthernetLinks>(netif_, *writer_);
+    ASSERT_TRUE(tcpip_->Configure(proxy_->config()).ok());
+    ASSERT_TRUE(links_->Configure(proxy_->config()).ok());
+  }
+
+  // Runs the writer with the proxy and the inverter until its queue is empty (at most 5 s).
+  void DrainWriter() {
+    const hal::Micros end = Now() + 5 * kSecond;
+    while (writer_->pending() > 0 && Now() < end) {
+      writer_->Poll(Now());
+      RunFor(2 * kMilli);
+    }
+    EXPECT_EQ(writer_->pending(), 0u);
+  }
+
+  hal::test::FakeFramePort port_{kMac, 2};
+  CardNetif netif_{port_};
+  MemoryNvStore store_;
+  std::unique_ptr<ParameterWriter> writer_;
+  std::unique_ptr<CardIdentity> identity_;
+  std::unique_ptr<CardTcpIp> tcpip_;
+  std::unique_ptr<CardEthernetLinks> links_;
+};
+
+TEST_F(CipProvidersTest, StoredSettings_ReadFromTheInvertersParameters) {
+  SetEeprom({{0xC504, 0}, {0xC505, 192}, {0xC506, 168}, {0xC507, 0}, {0xC508, 10}, {0xC509, 255},
+             {0xC510, 255}, {0xC511, 255}, {0xC512, 0}, {0xC081, 'V'}, {0xC082, 'F'}});
+  StartCard();
+  const cip::TcpIpSettings stored = tcpip_->StoredSettings();
+  EXPECT_EQ(stored.startup, cip::StartupConfiguration::kStored);
+  EXPECT_EQ(stored.static_configuration.ip_address, 0xC0A8000Au);
+  EXPECT_EQ(stored.static_configuration.network_mask, 0xFFFFFF00u);
+  EXPECT_EQ(std::string(stored.host_name.bytes().begin(), stored.host_name.bytes().end()), "VF");
+}
+
+TEST_F(CipProvidersTest, StoreInterfaceConfiguration_WritesC504ToC516InDecimalTitles) {
+  StartCard();
+  cip::TcpIpSettings settings = tcpip_->StoredSettings();
+  settings.startup = cip::StartupConfiguration::kDhcp;
+  settings.static_configuration.ip_address = 0xC0A8010C;    // 192.168.1.12
+  settings.static_configuration.network_mask = 0xFFFF0000;  // 255.255.0.0
+  settings.static_configuration.gateway = 0xC0A80101;       // 192.168.1.1
+  ASSERT_TRUE(tcpip_->StoreSettings(settings).ok());
+  EXPECT_EQ(tcpip_->StoredSettings(), settings);  // read back at once, before the inverter has it
+  DrainWriter();
+  EXPECT_EQ(Reg(0xC504), 2);
+  EXPECT_EQ(Reg(0xC505), 192);
+  EXPECT_EQ(Reg(0xC506), 168);
+  EXPECT_EQ(Reg(0xC507), 1);
+  EXPECT_EQ(Reg(0xC508), 12);
+  EXPECT_EQ(Reg(0xC509), 255);
+  EXPECT_EQ(Reg(0xC510), 255);  // c510 follows c509: the titles count in decimal
+  EXPECT_EQ(Reg(0xC511), 0);
+  EXPECT_EQ(Reg(0xC512), 0);
+  EXPECT_EQ(Reg(0xC513), 192);
+  EXPECT_EQ(Reg(0xC516), 1);
+  EXPECT_EQ(writer_->counters().failed, 0u);
+}
+
+TEST_F(CipProvidersTest, StoreHostName_OneCharacterPerParameterZeroAfterTheEnd) {
+  SetEeprom({{0xC081, 'O'}, {0xC082, 'L'}, {0xC083, 'D'}, {0xC084, 'N'}, {0xC085, 'A'}, {0xC086, 'M'},
+             {0xC087, 'E'}, {0xC088, 'X'}, {0xC089, 'Y'}, {0xC090, 'Z'}});
+  StartCard();
+  cip::TcpIpSettings settings = tcpip_->StoredSettings();
+  ASSERT_TRUE(settings.host_name.Assign(std::string_view("PUMP-7")));
+  ASSERT_TRUE(tcpip_->StoreSettings(settings).ok());
+  DrainWriter();
+  const std::vector<std::uint16_t> expected = {'P', 'U', 'M', 'P', '-', '7', 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const std::vector<std::uint16_t> numbers = {0xC081, 0xC082, 0xC083, 0xC084, 0xC085, 0xC086, 0xC087, 0xC088,
+                                              0xC089, 0xC090, 0xC091, 0xC092, 0xC093, 0xC094, 0xC095, 0xC096};
+  for (std::size_t i = 0; i < numbers.size(); ++i) EXPECT_EQ(Reg(numbers[i]), expected[i]) << std::hex << numbers[i];
+}
+
+TEST_F(CipProvidersTest, StoreUnchangedSettings_WritesNothing) {
+  StartCard();
+  const std::uint64_t before = proxy_->counters().accesses;
+  ASSERT_TRUE(tcpip_->StoreSettings(tcpip_->StoredSettings()).ok());
+  EXPECT_EQ(writer_->pending(), 0u);
+  DrainWriter();
+  EXPECT_EQ(proxy_->counters().accesses, before);
+  EXPECT_EQ(store_.writes, 1);  // the card's record once (it did not exist)
+  ASSERT_TRUE(tcpip_->StoreSettings(tcpip_->StoredSettings()).ok());
+  EXPECT_EQ(store_.writes, 1);  // unchanged: not written again
+}
+
+TEST_F(CipProvidersTest, HostNameWithControlCharacter_InvalidArgumentNothingStored) {
+  StartCard();
+  cip::TcpIpSettings settings = tcpip_->StoredSettings();
+  ASSERT_TRUE(settings.host_name.Assign(std::string_view("A\x01")));
+  settings.ttl = 5;
+  EXPECT_EQ(tcpip_->StoreSettings(settings).code(), base::StatusCode::kInvalidArgument);
+  EXPECT_EQ(writer_->pending(), 0u);
+  EXPECT_EQ(tcpip_->StoredSettings().ttl, 1);
+  EXPECT_TRUE(store_.records.empty());
+}
+
+TEST_F(CipProvidersTest, ExtrasKeptInTheCardsStoreAcrossARestart) {
+  StartCard();
+  cip::TcpIpSettings settings = tcpip_->StoredSettings();
+  settings.ttl = 16;
+  settings.select_acd = false;
+  settings.multicast = {1, 8, 0xEFC00120};
+  settings.static_configuration.name_server = 0x0A000001;
+  settings.static_configuration.name_server_2 = 0x0A000002;
+  ASSERT_TRUE(settings.static_configuration.domain_name.Assign(std::string_view("plant.example")));
+  ASSERT_TRUE(tcpip_->StoreSettings(settings).ok());
+  CardTcpIp restarted(netif_, *writer_, store_);
+  ASSERT_TRUE(restarted.Configure(proxy_->config()).ok());
+  EXPECT_EQ(restarted.StoredSettings(), settings);
+}
+
+TEST_F(CipProvidersTest, DamagedExtrasRecord_Defaults) {
+  store_.records[kNvTcpIpExtras] = {0x01, 0x10};  // cut short
+  StartCard();
+  EXPECT_EQ(tcpip_->StoredSettings().ttl, 1);
+  EXPECT_TRUE(tcpip_->StoredSettings().select_acd);
+}
+
+TEST_F(CipProvidersTest, DriveLinkDown_StoreRefused) {
+  Start();  // the configuration is not read yet
+  writer_ = std::make_unique<ParameterWriter>(*proxy_);
+  CardTcpIp tcpip(netif_, *writer_, store_);
+  cip::TcpIpSettings settings = tcpip.StoredSettings();
+  settings.startup = cip::StartupConfiguration::kBootp;
+  EXPECT_EQ(tcpip.StoreSettings(settings).code(), base::StatusCode::kFailedPrecondition);
+  EXPECT_EQ(tcpip.StoredSettings().startup, cip::StartupConfiguration::kStored);
+}
+
+TEST_F(CipProvidersTest, ParameterWriter_QueueFull_NothingQueued) {
+  StartCard();
+  std::vector<ParameterValue> many;
+  for (std::uint16_t i = 0; i < ParameterWriter::kMaxQueued + 1; ++i) many.push_back({0xC081, i});
+  // Repeats of one number take one slot.
+  EXPECT_TRUE(writer_->Enqueue(many).ok());
+  EXPECT_EQ(writer_->pending(), 1u);
+  std::vector<ParameterValue> distinct;
+  for (unsigned title = 1; title <= ParameterWriter::kMaxQueued; ++title) {
+    distinct.push_back({drive_link::reg::CParameter(title), 0});
+  }
+  EXPECT_EQ(writer_->Enqueue(distinct).code(), base::StatusCode::kResourceExhausted);
+  EXPECT_EQ(writer_->pending(), 1u);
+}
+
+TEST_F(CipProvidersTest, ParameterWriter_RefusedWriteCountedQueueGoesOn) {
+  StartCard();
+  const std::vector<ParameterValue> writes = {{0xC504, 9}, {0xC505, 172}};  // c504 is 0-2
+  ASSERT_TRUE(writer_->Enqueue(writes).ok());
+  DrainWriter();
+  EXPECT_EQ(writer_->counters().failed, 1u);
+  EXPECT_EQ(writer_->counters().last_error, drive_link::AccessError::kOutOfRange);
+  EXPECT_EQ(writer_->counters().written, 1u);
+  EXPECT_EQ(Reg(0xC505), 172);
+}
+
+TEST_F(CipProvidersTest, LinkSetting_StoredInC501) {
+  StartCard();
+  EXPECT_EQ(links_->StoredSetting(), cip::LinkSetting::kAuto);
+  ASSERT_TRUE(links_->StoreSetting(cip::LinkSetting::k10Half).ok());
+  EXPECT_EQ(links_->StoredSetting(), cip::LinkSetting::k10Half);
+  DrainWriter();
+  EXPECT_EQ(Reg(0xC501), 2);
+}
+
+TEST_F(CipProvidersTest, LinkState_PerPortFromTheFramePort) {
+  StartCard();
+  port_.SetLink(hal::PortId::kRight, false);
+  const cip::LinkState left = links_->State(cip::LinkPort::kLeft);
+  EXPECT_TRUE(left.up);
+  EXPECT_EQ(left.speed_mbps, 100u);
+  EXPECT_TRUE(left.full_duplex);
+  EXPECT_EQ(left.negotiation, cip::NegotiationStatus::kNegotiated);
+  const cip::LinkState right = links_->State(cip::LinkPort::kRight);
+  EXPECT_FALSE(right.up);
+  EXPECT_EQ(right.speed_mbps, 0u);
+}
+
+TEST_F(CipProvidersTest, Counters_ByDestinationKindAndClearedByBaseline) {
+  StartCard();
+  netif_.Start(Ipv4Config{0xC0A8010C, 0xFFFFFF00, 0}, "card");
+  std::vector<std::uint8_t> unicast(60, 0);
+  std::copy(kMac.begin(), kMac.end(), unicast.begin());
+  std::vector<std::uint8_t> broadcast(60, 0xFF);
+  port_.Inject(unicast, hal::PortId::kLeft);
+  port_.Inject(broadcast, hal::PortId::kLeft);
+  port_.Inject(broadcast, hal::PortId::kRight);
+  netif_.PumpReceive(8);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kLeft).in_ucast_packets, 1u);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kLeft).in_nucast_packets, 1u);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kRight).in_nucast_packets, 1u);
+  links_->ClearCounters(cip::LinkPort::kLeft);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kLeft).in_ucast_packets, 0u);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kLeft).in_nucast_packets, 0u);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kRight).in_nucast_packets, 1u);  // the other port keeps its own
+  port_.Inject(broadcast, hal::PortId::kLeft);
+  netif_.PumpReceive(8);
+  EXPECT_EQ(links_->Counters(cip::LinkPort::kLeft).in_nucast_packets, 1u);
+}
+
+TEST_F(CipProvidersTest, Identity_DefaultsNotConfiguredNoIoConnections) {
+  StartCard();
+  const cip::DeviceStatus status = identity_->Status();
+  EXPECT_FALSE(status.configured);
+  EXPECT_FALSE(status.minor_recoverable_fault);
+  EXPECT_FALSE(status.major_recoverable_fault);
+  EXPECT_EQ(status.extended, cip::ExtendedDeviceStatus::kNoIoConnections);
+  EXPECT_EQ(identity_->Mac(), kMac);
+  EXPECT_EQ(identity_->Model(), cip::DriveModel::kVfMb1);
+}
+
+TEST_F(CipProvidersTest, Identity_ScannerMappingChangedIsConfigured) {
+  SetEeprom({{0xC001, 2}});
+  StartCard();
+  EXPECT_TRUE(identity_->Status().configured);
+}
+
+TEST_F(CipProvidersTest, Identity_ReservedMenuIsAMinorRecoverableFault) {
+  SetEeprom({{0xC001, 4}});  // menu 4 is "-" in the manual: replaced by the default and reported
+  StartCard();
+  EXPECT_TRUE(identity_->Status().minor_recoverable_fault);
+}
+
+TEST_F(CipProvidersTest, Identity_DriveModelFromFb05) {
+  StartCard();
+  identity_->OnDriveIdentity(0x09, 0x0110);
+  EXPECT_EQ(identity_->Model(), cip::DriveModel::kVfS15);
+  identity_->OnDriveIdentity(0x04, 0x0110);
+  EXPECT_EQ(identity_->Model(), cip::DriveModel::kVfMb1);
+}
+
+}  // namespace
+}  // namespace firmware
