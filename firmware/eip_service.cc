@@ -6,6 +6,7 @@
 
 #include "lwip/ip.h"
 #include "lwip/pbuf.h"
+#include "tcp_pcb_util.h"
 
 namespace firmware {
 namespace {
@@ -13,9 +14,6 @@ namespace {
 static_assert(cip::kMaxSessions == IPE_MAX_ENIP_SESSIONS, "lwipopts.h sizes pools for these sessions");
 // One reply in flight per connection is what lwipopts.h reserves heap for.
 static_assert(cip::kMaxReplyMessage <= IPE_TCP_PEER_RESPONSE_BYTES, "a reply must fit its heap share");
-
-// lwIP's poll callback runs every interval x 500 ms: a held reply is retried within a second.
-constexpr u8_t kPollInterval = 2;
 
 cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
   return {lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address))), port};
@@ -37,26 +35,12 @@ base::Status EipService::Start() {
     udp_remove(udp);
     return base::FailedPrecondition();
   }
-  tcp_pcb* pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
-  if (pcb == nullptr) {
+  const base::Result<tcp_pcb*> listener = OpenTcpListener(options_.port, this, &EipService::OnAccept);
+  if (!listener.ok()) {
     udp_remove(udp);
-    return base::ResourceExhausted();
+    return listener.status();
   }
-  if (tcp_bind(pcb, IP4_ADDR_ANY, options_.port) != ERR_OK) {
-    tcp_close(pcb);
-    udp_remove(udp);
-    return base::FailedPrecondition();
-  }
-  err_t err = ERR_OK;
-  tcp_pcb* listener = tcp_listen_with_backlog_and_err(pcb, TCP_DEFAULT_LISTEN_BACKLOG, &err);
-  if (listener == nullptr) {
-    tcp_close(pcb);
-    udp_remove(udp);
-    return base::ResourceExhausted();
-  }
-  listener_ = listener;
-  tcp_arg(listener_, this);
-  tcp_accept(listener_, &EipService::OnAccept);
+  listener_ = *listener;
   udp_ = udp;
   udp_recv(udp_, &EipService::OnUdp, this);
   return base::OkStatus();
@@ -66,12 +50,7 @@ void EipService::Stop() {
   for (Connection& connection : connections_) {
     if (connection.pcb != nullptr) Abort(connection);
   }
-  if (listener_ != nullptr) {
-    tcp_arg(listener_, nullptr);
-    tcp_accept(listener_, nullptr);
-    tcp_close(listener_);  // a listening PCB is always freed
-    listener_ = nullptr;
-  }
+  CloseTcpListener(listener_);
   if (udp_ != nullptr) {
     udp_remove(udp_);
     udp_ = nullptr;
@@ -133,14 +112,9 @@ err_t EipService::Accept(tcp_pcb* pcb) {
   connection.input_size = 0;
   connection.held_reply_size = 0;
   connection.close_after_reply = false;
-  tcp_arg(pcb, &connection);
-  tcp_recv(pcb, &EipService::OnRecv);
-  tcp_sent(pcb, &EipService::OnSent);
-  tcp_err(pcb, &EipService::OnError);
-  tcp_poll(pcb, &EipService::OnPoll, kPollInterval);
-  // Request/response: a reply must not wait for the acknowledgement of the previous one.
-  tcp_nagle_disable(pcb);
-  ApplyKeepalive(pcb, options_.keepalive);
+  AttachTcpConnection(pcb, &connection,
+                      {&EipService::OnRecv, &EipService::OnSent, &EipService::OnError, &EipService::OnPoll},
+                      options_.keepalive);
   ++counters_.accepted;
   return ERR_OK;
 }
@@ -148,14 +122,7 @@ err_t EipService::Accept(tcp_pcb* pcb) {
 // tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
 err_t EipService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
   auto* connection = static_cast<Connection*>(arg);
-  if (connection == nullptr || connection->pcb != pcb) {
-    // Not ours any more (detached): behave like lwIP's tcp_recv_null.
-    if (p != nullptr) {
-      tcp_recved(pcb, p->tot_len);
-      pbuf_free(p);
-    }
-    return ERR_OK;
-  }
+  if (connection == nullptr || connection->pcb != pcb) return DiscardTcpData(pcb, p);
   if (err != ERR_OK && p != nullptr) {
     pbuf_free(p);
     return ERR_OK;
@@ -270,12 +237,7 @@ err_t EipService::Close(Connection& connection) {
   DetachTcpCallbacks(pcb);
   connection.pcb = nullptr;
   server_.CloseTcpConnection(connection.id);
-  // FIN after the data already queued; when lwIP has no memory for the FIN, reset instead.
-  if (tcp_close(pcb) != ERR_OK) {
-    tcp_abort(pcb);
-    return ERR_ABRT;
-  }
-  return ERR_OK;
+  return CloseOrAbortTcp(pcb);
 }
 
 void EipService::Abort(Connection& connection) {

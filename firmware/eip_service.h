@@ -31,7 +31,6 @@
 #include "lwip/udp.h"
 #include "lwipopts.h"
 #include "tcp_keepalive.h"
-#include "tcp_pcb_util.h"
 
 namespace firmware {
 

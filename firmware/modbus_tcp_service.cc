@@ -15,9 +15,6 @@ namespace {
 static_assert(modbus::kReceiveBufferBytes >= TCP_WND, "the Modbus receive buffer must hold a whole TCP window");
 static_assert(modbus::Server::kMaxClients == IPE_MAX_MODBUS_CLIENTS, "lwipopts.h sizes pools for these clients");
 
-// lwIP's poll callback runs every interval x 500 ms: a stalled write is retried within a second.
-constexpr u8_t kPollInterval = 2;
-
 modbus::Ipv4Address PeerAddress(const tcp_pcb* pcb) {
   const u32_t network_order = ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip));
   modbus::Ipv4Address address{};
@@ -36,21 +33,9 @@ base::Status ModbusTcpService::Configure(const drive_link::CardConfig& config) {
 
 base::Status ModbusTcpService::Start() {
   if (listener_ != nullptr) return base::OkStatus();
-  tcp_pcb* pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
-  if (pcb == nullptr) return base::ResourceExhausted();
-  if (tcp_bind(pcb, IP4_ADDR_ANY, options_.port) != ERR_OK) {
-    tcp_close(pcb);
-    return base::FailedPrecondition();
-  }
-  err_t err = ERR_OK;
-  tcp_pcb* listener = tcp_listen_with_backlog_and_err(pcb, TCP_DEFAULT_LISTEN_BACKLOG, &err);
-  if (listener == nullptr) {
-    tcp_close(pcb);
-    return base::ResourceExhausted();
-  }
-  listener_ = listener;
-  tcp_arg(listener_, this);
-  tcp_accept(listener_, &ModbusTcpService::OnAccept);
+  const base::Result<tcp_pcb*> listener = OpenTcpListener(options_.port, this, &ModbusTcpService::OnAccept);
+  if (!listener.ok()) return listener.status();
+  listener_ = *listener;
   return base::OkStatus();
 }
 
@@ -58,12 +43,7 @@ void ModbusTcpService::Stop() {
   for (Client& client : clients_) {
     if (client.pcb != nullptr) Abort(client);
   }
-  if (listener_ != nullptr) {
-    tcp_arg(listener_, nullptr);
-    tcp_accept(listener_, nullptr);
-    tcp_close(listener_);  // a listening PCB is always freed
-    listener_ = nullptr;
-  }
+  CloseTcpListener(listener_);
 }
 
 void ModbusTcpService::Poll(hal::Micros now) {
@@ -99,14 +79,10 @@ err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
   }
   Client& client = clients_[*id];
   client = Client{this, pcb, *id, false};
-  tcp_arg(pcb, &client);
-  tcp_recv(pcb, &ModbusTcpService::OnRecv);
-  tcp_sent(pcb, &ModbusTcpService::OnSent);
-  tcp_err(pcb, &ModbusTcpService::OnError);
-  tcp_poll(pcb, &ModbusTcpService::OnPoll, kPollInterval);
-  // Request/response: an answer must not wait for the previous one's acknowledgement.
-  tcp_nagle_disable(pcb);
-  ApplyKeepalive(pcb, options_.keepalive);
+  AttachTcpConnection(pcb, &client,
+                      {&ModbusTcpService::OnRecv, &ModbusTcpService::OnSent, &ModbusTcpService::OnError,
+                       &ModbusTcpService::OnPoll},
+                      options_.keepalive);
   ++counters_.accepted;
   return ERR_OK;
 }
@@ -115,14 +91,7 @@ err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
 // A NULL pbuf: the remote host closed the connection.
 err_t ModbusTcpService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
   auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) {
-    // Not ours any more (detached): behave like lwIP's tcp_recv_null.
-    if (p != nullptr) {
-      tcp_recved(pcb, p->tot_len);
-      pbuf_free(p);
-    }
-    return ERR_OK;
-  }
+  if (client == nullptr || client->pcb != pcb) return DiscardTcpData(pcb, p);
   if (err != ERR_OK && p != nullptr) {
     pbuf_free(p);
     return ERR_OK;
@@ -220,12 +189,7 @@ err_t ModbusTcpService::Close(Client& client) {
   DetachTcpCallbacks(pcb);
   client.pcb = nullptr;
   server_.Close(client.id);
-  // FIN after the data already queued; when lwIP has no memory for the FIN, reset instead.
-  if (tcp_close(pcb) != ERR_OK) {
-    tcp_abort(pcb);
-    return ERR_ABRT;
-  }
-  return ERR_OK;
+  return CloseOrAbortTcp(pcb);
 }
 
 void ModbusTcpService::Abort(Client& client) {
