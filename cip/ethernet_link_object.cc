@@ -6,14 +6,15 @@
 namespace cip {
 namespace {
 
-constexpr std::array<std::uint16_t, 5> kClassAttributes = {1, 2, 3, 6, 7};
+// 4 and 5 (empty lists) are present so that class Get_Attributes_All has the standard layout.
+constexpr std::array<std::uint16_t, 7> kClassAttributes = {1, 2, 3, 4, 5, 6, 7};
 constexpr std::array<std::uint8_t, 2> kClassServices = {kServiceGetAttributesAll, kServiceGetAttributeSingle};
 constexpr std::array<std::uint8_t, 4> kInstanceServices = {kServiceGetAttributesAll, kServiceGetAttributeSingle,
                                                            kServiceSetAttributeSingle, kServiceGetAndClear};
 constexpr ClassSpec kEthernetLinkClass = {
     kClassEthernetLink, 3, kClassAttributes, {}, {}, 7, 10, kClassServices, kInstanceServices,
 };
-constexpr std::array<AttributeSpec, 8> kAttributes = {{
+constexpr std::array<AttributeSpec, 10> kAttributes = {{
     {1, Access::kGet, true},
     {2, Access::kGet, true},
     {3, Access::kGet, true},
@@ -21,12 +22,16 @@ constexpr std::array<AttributeSpec, 8> kAttributes = {{
     {5, Access::kGet, true},
     {6, Access::kGetSet, true},
     {7, Access::kGet, true},
+    {8, Access::kGet, true},
+    {9, Access::kGet, true},
     {10, Access::kGet, true},
 }};
 
 constexpr std::uint16_t kAttributeInterfaceCounters = 4;
 constexpr std::uint16_t kAttributeMediaCounters = 5;
 constexpr std::uint8_t kInterfaceTypeTwistedPair = 2;
+constexpr std::uint8_t kInterfaceStateEnabled = 1;  // attribute 8: enabled, ready to send and receive
+constexpr std::uint8_t kAdminStateEnabled = 1;      // attribute 9: the card never disables a port
 constexpr std::uint32_t kFlagLinkUp = 0x01;
 constexpr std::uint32_t kFlagFullDuplex = 0x02;
 constexpr std::uint32_t kFlagManualSettingRequiresReset = 0x20;
@@ -117,6 +122,12 @@ void EthernetLinkObject::GetInstanceAttribute(std::uint32_t instance, std::uint1
       break;
     case 7:
       out.U8(kInterfaceTypeTwistedPair);
+      break;
+    case 8:
+      out.U8(kInterfaceStateEnabled);
+      break;
+    case 9:
+      out.U8(kAdminStateEnabled);
       break;
     case 10: {
       const std::string_view label = port == LinkPort::kRight ? "Right" : "Left";

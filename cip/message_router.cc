@@ -194,6 +194,7 @@ std::size_t MessageRouter::UnconnectedSend(const MessageRouterRequest& request, 
   } else if (const std::uint16_t routing_error = CheckRoute(route); routing_error != 0) {
     EncodeErrorReply(request.service, ErrorWithExtended(GeneralStatus::kConnectionFailure, routing_error), out);
     out.U8(route_words);  // remaining path size: no hop of the route was taken
+    out.U8(0);            // reserved (what Wireshark's CIP dissector reads after it)
     return out.ok() ? out.size() : 0;
   } else {
     return Handle(embedded, context, reply, depth + 1);

@@ -217,12 +217,13 @@ TEST_F(CipMessageRouterTest, UnconnectedSendWithALocalRouteAnswersTheEmbeddedReq
   EXPECT_EQ(Ask(UnconnectedSend(Hex("4B 02 20 70 24 01 AA"), Hex("01 00"))), Hex("CB 00 00 00 AA"));
 }
 
+// Routing errors: 0x01 with extended status, then the remaining path size and a reserved byte.
 TEST_F(CipMessageRouterTest, UnconnectedSendToAnotherNode) {
-  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("01 03"))), Hex("D2 00 01 01 12 03 01"));  // slot 3
-  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("02 05"))), Hex("D2 00 01 01 12 03 01"));  // out on Ethernet
-  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("01 00 03 01"))), Hex("D2 00 01 01 11 03 02"));  // port 3
-  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("20 01"))), Hex("D2 00 01 01 15 03 01"));  // not a port
-  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("12 05 31 2E 32 2E"))), Hex("D2 00 01 01 15 03 03"));  // cut
+  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("01 03"))), Hex("D2 00 01 01 12 03 01 00"));  // slot 3
+  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("02 05"))), Hex("D2 00 01 01 12 03 01 00"));  // out on Ethernet
+  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("01 00 03 01"))), Hex("D2 00 01 01 11 03 02 00"));  // port 3
+  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("20 01"))), Hex("D2 00 01 01 15 03 01 00"));  // not a port
+  EXPECT_EQ(Ask(UnconnectedSend(kGetAttribute1, Hex("12 05 31 2E 32 2E"))), Hex("D2 00 01 01 15 03 03 00"));  // cut
 }
 
 TEST_F(CipMessageRouterTest, UnconnectedSendMalformed) {

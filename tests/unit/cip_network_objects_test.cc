@@ -248,15 +248,18 @@ TEST_F(CipEthernetLinkTest, CountersTypeAndLabels) {
   EXPECT_EQ(card_.Ask(GetLink(1, 7)), Hex("8E 00 00 00 02"));
   EXPECT_EQ(card_.Ask(GetLink(1, 10)), Hex("8E 00 00 00 04 4C 65 66 74"));
   EXPECT_EQ(card_.Ask(GetLink(2, 10)), Hex("8E 00 00 00 05 52 69 67 68 74"));
-  EXPECT_EQ(card_.Ask(GetLink(1, 8)), Hex("8E 00 14 00"));
+  EXPECT_EQ(card_.Ask(GetLink(1, 8)), Hex("8E 00 00 00 01"));  // interface state: enabled
+  EXPECT_EQ(card_.Ask(GetLink(2, 9)), Hex("8E 00 00 00 01"));  // admin state: enabled
+  EXPECT_EQ(card_.Ask(GetLink(1, 11)), Hex("8E 00 14 00"));
   EXPECT_EQ(card_.Ask(GetLink(3, 1)), Hex("8E 00 16 00"));
 }
 
 TEST_F(CipEthernetLinkTest, GetAttributesAll) {
   EXPECT_EQ(card_.Ask(Hex("01 02 20 F6 24 02")),
             test::Concat(test::Concat(Hex("81 00 00 00 00 00 00 00 20 00 00 00 00 80 F4 7D 02 C0"), Hex(kCounterBytes)),
-                         test::Concat(Hex(kMediaBytes), Hex("01 00 00 00 | 02 | 05 52 69 67 68 74"))));
-  EXPECT_EQ(card_.Ask(Hex("01 02 20 F6 24 00")), Hex("81 00 00 00 03 00 02 00 02 00 07 00 0A 00"));
+                         test::Concat(Hex(kMediaBytes), Hex("01 00 00 00 | 02 | 01 | 01 | 05 52 69 67 68 74"))));
+  // Class level: revision, max instance, count, empty optional attribute and service lists, 7, 10.
+  EXPECT_EQ(card_.Ask(Hex("01 02 20 F6 24 00")), Hex("81 00 00 00 03 00 02 00 02 00 00 00 00 00 07 00 0A 00"));
 }
 
 TEST_F(CipEthernetLinkTest, InterfaceControlIsTheRateSetting) {
