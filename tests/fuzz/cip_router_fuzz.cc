@@ -68,7 +68,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (decoded->general != cip::GeneralStatus::kSuccess) {
     const bool msp = decoded->general == cip::GeneralStatus::kEmbeddedServiceError;
     const bool routing = decoded->general == cip::GeneralStatus::kConnectionFailure;
-    Require(decoded->data.empty() || msp || (routing && decoded->data.size() == 1));
+    // A routing error carries the remaining path size and a reserved byte.
+    Require(decoded->data.empty() || msp || (routing && decoded->data.size() == 2));
   }
 
   const base::Result<cip::MessageRouterRequest> parsed = cip::DecodeMessageRouterRequest(request);
