@@ -35,7 +35,7 @@ std::size_t FinishReply(std::uint8_t request_service, ServiceStatus status, Byte
     out.PatchU8(0, static_cast<std::uint8_t>(request_service | kReplyServiceBit));
     out.PatchU8(1, 0);
     out.PatchU8(2, static_cast<std::uint8_t>(status.general));
-    out.PatchU8(3, 0);
+    out.PatchU8(3, status.ok() ? 0 : status.additional_words_in_data);
   } else {
     out.Truncate(0);
     EncodeErrorReply(request_service, status, out);

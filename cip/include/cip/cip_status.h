@@ -64,6 +64,10 @@ struct ServiceStatus {
   bool has_extended = false;
   std::uint16_t extended = 0;
   bool keep_reply_data = false;
+  // With keep_reply_data and no has_extended: the reply data begins with this many additional status
+  // words the service wrote itself (a refused Forward_Open: the extended status and, for some codes,
+  // the acceptable value), followed by its error reply data.
+  std::uint8_t additional_words_in_data = 0;
 
   constexpr bool ok() const { return general == GeneralStatus::kSuccess; }
   constexpr bool operator==(const ServiceStatus&) const = default;
