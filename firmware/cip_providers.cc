@@ -126,12 +126,14 @@ base::Status CardTcpIp::StoreSettings(const cip::TcpIpSettings& settings) {
     const std::uint8_t was = i < settings_.host_name.size() ? settings_.host_name.bytes()[i] : 0;
     add(reg::CParameter(81 + i), c, was);
   }
+  // The card's record first: it can fail and be put back, a queued write cannot be taken back.
+  if (base::Status saved = SaveExtras(settings); !saved.ok()) return saved;
   if (count > 0) {
     if (base::Status queued = writer_.Enqueue(std::span<const ParameterValue>(writes.data(), count)); !queued.ok()) {
+      SaveExtras(settings_).IgnoreError();  // back to what Get still reads; the refusal is the answer
       return queued;
     }
   }
-  if (base::Status saved = SaveExtras(settings); !saved.ok()) return saved;
   settings_ = settings;
   return base::OkStatus();
 }

@@ -181,6 +181,24 @@ TEST_F(CipProvidersTest, DriveLinkDown_StoreRefused) {
   EXPECT_EQ(tcpip.StoredSettings().startup, cip::StartupConfiguration::kStored);
 }
 
+TEST_F(CipProvidersTest, WriterQueueFull_StoreRefusedCardsRecordUnchanged) {
+  StartCard();
+  ASSERT_TRUE(tcpip_->StoreSettings(tcpip_->StoredSettings()).ok());  // the record with the defaults
+  const std::vector<std::uint8_t> record = store_.records.at(kNvTcpIpExtras);
+  std::vector<ParameterValue> filler;
+  for (unsigned title = 1; title <= ParameterWriter::kMaxQueued; ++title) {
+    filler.push_back({drive_link::reg::CParameter(title), 0});
+  }
+  ASSERT_TRUE(writer_->Enqueue(filler).ok());
+  cip::TcpIpSettings settings = tcpip_->StoredSettings();
+  settings.ttl = 9;
+  settings.startup = cip::StartupConfiguration::kDhcp;
+  EXPECT_EQ(tcpip_->StoreSettings(settings).code(), base::StatusCode::kResourceExhausted);
+  EXPECT_EQ(store_.records.at(kNvTcpIpExtras), record);
+  EXPECT_EQ(tcpip_->StoredSettings().ttl, 1);
+  EXPECT_EQ(tcpip_->StoredSettings().startup, cip::StartupConfiguration::kStored);
+}
+
 TEST_F(CipProvidersTest, ParameterWriter_QueueFull_NothingQueued) {
   StartCard();
   std::vector<ParameterValue> many;
