@@ -32,6 +32,27 @@ struct RequestContext {
   // ... and the ones a handler wants in the reply packet (a Forward_Open reply for multicast T->O).
   std::optional<SocketAddress> reply_o_to_t;
   std::optional<SocketAddress> reply_t_to_o;
+  // Who asks: the binding's TCP connection (its index + 1; 0: none, e.g. tests). A requester has at most
+  // one request in progress, so a handler may key work it started for a request on it.
+  std::uint32_t requester = 0;
+  // Deferred replies (docs/ethernetip.md "Deferred replies"). A handler that cannot answer yet (it started
+  // a drive-link access) sets `pending`; the message router then stops and the encapsulation server
+  // answers nothing, keeps the whole message and executes it again, from the start, when the binding
+  // retries it. Handlers answer the repeat from what they recorded for `requester`, so a retried request
+  // never starts an access twice.
+  bool pending = false;
+};
+
+// The handlers' side of deferred replies (implemented by the drive objects' access journal). The
+// encapsulation server calls Started before each execution of a request (the first and every retry) and
+// Finished once its reply is produced or its requester is gone; the binding retries a pending request
+// when ReadyToRetry says every access it started has completed.
+class RequestLifecycle {
+ public:
+  virtual ~RequestLifecycle() = default;
+  virtual void OnRequestStarted(std::uint32_t requester) = 0;
+  virtual void OnRequestFinished(std::uint32_t requester) = 0;
+  virtual bool ReadyToRetry(std::uint32_t requester) const = 0;
 };
 
 class UnconnectedMessageHandler {

@@ -92,6 +92,42 @@ class ScannerImage {
   virtual bool IsScannerTarget(std::uint16_t number) const = 0;
 };
 
+// FA06/FA07 for the CIP drive profile (assemblies 20/21/100/101, Control Supervisor 0x29, AC/DC Drive
+// 0x2A), whatever c001-c006 select, and the feedback registers those need besides FD01.
+struct DriveCommandWords {
+  std::uint16_t fa06 = 0;
+  std::uint16_t fa07 = 0;
+  constexpr bool operator==(const DriveCommandWords&) const = default;
+};
+
+struct DriveFeedbackWords {
+  std::uint16_t fd01 = 0;  // status
+  std::uint16_t fd00 = 0;  // output frequency, 0.01 Hz
+  std::uint16_t fe02 = 0;  // frequency command in force, 0.01 Hz
+  bool known = false;      // all three read since feedback was wanted (and since the last load)
+};
+
+class DriveCommandChannel {
+ public:
+  virtual ~DriveCommandChannel() = default;
+  // Takes FA06 and FA07 over: both are written by the cyclic exchange as command words are (at once when
+  // changed, refreshed when unchanged, RAM only, FA06 bit 13 once per rising edge, nothing while a loss
+  // action other than c101 = 1 is in force). While taken, a scanner word whose menu targets FA06 or FA07
+  // is not written (the drive profile owns the register) and IsScannerTarget(FA06/FA07) is true.
+  virtual void SetDriveCommand(const DriveCommandWords& words) = 0;
+  // Gives FA06/FA07 back (to the scanner words, if a menu targets them). Nothing is written for it.
+  virtual void ReleaseDriveCommand() = 0;
+  virtual bool drive_command_taken() const = 0;
+  // As ScannerImage::SetCommandWords for the words whose bit is set in `mask` (bit i = word i + 1): the
+  // others are not written while the last call's mask leaves them out (an assembly 100 of fewer than
+  // 8 words carries fewer scanner words). SetCommandWords is this with every bit set.
+  virtual void SetCommandWordsMasked(const ScannerWords& words, std::uint8_t mask) = 0;
+  // Whether FD00 and FE02 are read in every exchange cycle (besides FD01); off by default, so the
+  // Modbus side's cycle does not get longer.
+  virtual void SetFeedbackWanted(bool wanted) = 0;
+  virtual DriveFeedbackWords DriveFeedback() const = 0;
+};
+
 // What cut the front end's traffic; reported in c536 where the manual has a code for it.
 enum class LossCause : std::uint8_t {
   kModbusIoScanning,   // Modbus TCP IO scanning timeout (c523): c536 = 1
