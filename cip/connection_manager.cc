@@ -388,16 +388,17 @@ ServiceStatus ConnectionManager::ForwardClose(const ServiceRequest& service, Byt
     ++counters_.close_other_rejects;
     return EncodeConnectionFailure(ConnectionFailure::Extended(kExtendedConnectionNotFound), triad, reply);
   }
-  Close(static_cast<std::size_t>(index));
+  Close(static_cast<std::size_t>(index), CloseReason::kForwardClose);
   EncodeForwardCloseSuccess(triad, reply);
   return Success();
 }
 
-void ConnectionManager::Close(std::size_t index) {
+void ConnectionManager::Close(std::size_t index, CloseReason reason) {
   Connection& connection = connections_[index];
   if (!connection.open) return;
   connection.open = false;
   if (connection.explicit_slot != kNone) explicit_in_use_[static_cast<std::size_t>(connection.explicit_slot)] = false;
+  if (events_ != nullptr) events_->OnConnectionClosed(InfoOf(connection), reason);
   CloseOrphanedListeners();
   ReleaseUnusedProducers();
   NotifyChanged();
@@ -408,6 +409,7 @@ void ConnectionManager::CloseOrphanedListeners() {
     if (connection.open && connection.transport_class == 1 && connection.kind == IoConnectionKind::kListenOnly &&
         !HasProducerOf(connection.points.produced, false)) {
       connection.open = false;
+      if (events_ != nullptr) events_->OnConnectionClosed(InfoOf(connection), CloseReason::kProducerGone);
     }
   }
 }
@@ -481,8 +483,23 @@ std::uint32_t ConnectionManager::NewConnectionId() {
 }
 
 ConnectionInfo ConnectionManager::InfoOf(const Connection& connection) const {
-  return ConnectionInfo{connection.transport_class,    connection.kind,      connection.points,   connection.triad,
-                        connection.originator_address, connection.o_to_t_id, connection.t_to_o_id};
+  ConnectionInfo info{connection.transport_class,    connection.kind,      connection.points,   connection.triad,
+                      connection.originator_address, connection.o_to_t_id, connection.t_to_o_id};
+  info.o_to_t_api = connection.o_to_t_api;
+  info.t_to_o_api = connection.t_to_o_api;
+  info.timeout = connection.timeout;
+  info.run = connection.run;
+  info.multicast = connection.producer != kNone && producers_[static_cast<std::size_t>(connection.producer)].multicast;
+  return info;
+}
+
+std::size_t ConnectionManager::ListConnections(std::span<ConnectionInfo> out) const {
+  std::size_t count = 0;
+  for (const Connection& connection : connections_) {
+    if (!connection.open || count == out.size()) continue;
+    out[count++] = InfoOf(connection);
+  }
+  return count;
 }
 
 base::Status AttachConnectionManager(CipDevice& device, ConnectionManager& cm) {

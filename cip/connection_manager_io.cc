@@ -61,7 +61,7 @@ void ConnectionManager::CheckTimeouts(hal::Micros now) {
     ++counters_.connection_timeouts;
     if (connection.transport_class == 1) io_faulted_ = true;
     const ConnectionInfo info = InfoOf(connection);
-    Close(i);
+    Close(i, CloseReason::kTimedOut);
     if (events_ != nullptr) events_->OnConnectionTimedOut(info);
   }
 }
@@ -150,6 +150,8 @@ std::size_t ConnectionManager::HandleConnected(std::uint32_t connection_id, std:
   ByteWriter out(reply.first(capacity));
   out.U16(sequence_count);
   const std::size_t size = router_.Handle(request, context, out.Tail(), 0);
+  // Deferred: nothing is kept, the retry executes the request again (and then stores its reply).
+  if (context.pending) return 0;
   if (size == 0) return 0;
   out.Advance(size);
   // The request may have closed this very connection (a Forward_Close over it): then nothing is kept.
@@ -174,7 +176,7 @@ void ConnectionManager::OnSessionClosed(std::uint32_t session_handle) {
     Connection& connection = connections_[i];
     if (!connection.open || connection.session_handle != session_handle) continue;
     if (connection.transport_class == 3) {
-      Close(i);
+      Close(i, CloseReason::kSessionClosed);
     } else {
       connection.session_handle = 0;  // I/O connections outlive the TCP connection that opened them
     }

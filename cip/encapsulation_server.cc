@@ -1,5 +1,7 @@
 #include "cip/encapsulation_server.h"
 
+#include <algorithm>
+
 #include "cip/cpf.h"
 
 namespace cip {
@@ -70,6 +72,8 @@ base::Result<TcpConnectionId> EncapsulationServer::OpenTcpConnection(Ipv4Endpoin
 void EncapsulationServer::CloseTcpConnection(TcpConnectionId id) {
   Connection* connection = Find(id);
   if (connection == nullptr) return;
+  if (connection->pending && lifecycle_ != nullptr) lifecycle_->OnRequestFinished(RequesterOf(*connection));
+  connection->pending = false;
   EndSession(*connection);
   connection->open = false;
   connection->assembler.Reset();
@@ -83,16 +87,51 @@ EncapsulationServer::Connection* EncapsulationServer::Find(TcpConnectionId id) {
 TcpStep EncapsulationServer::OnTcpData(TcpConnectionId id, std::span<const std::uint8_t> input, hal::Micros now) {
   Connection* connection = Find(id);
   if (connection == nullptr) return TcpStep{input.size(), {}, true};
+  if (connection->pending) return TcpStep{0, {}, false, true};
   const TcpMessageAssembler::PushResult pushed = connection->assembler.Push(input);
   if (pushed.consumed > 0) {
     connection->last_activity = now;
     connection->expiry_reported = false;
   }
   if (!pushed.message_ready) return TcpStep{pushed.consumed, {}, false};
-  TcpStep step = Answer(*connection, now);
-  connection->assembler.Next();
+  TcpStep step = AnswerAssembled(*connection, now);
   step.consumed = pushed.consumed;
   return step;
+}
+
+bool EncapsulationServer::ReadyToRetry(TcpConnectionId id) const {
+  if (id.index >= connections_.size()) return false;
+  const Connection& connection = connections_[id.index];
+  if (!connection.open || !connection.pending) return false;
+  return lifecycle_ == nullptr || lifecycle_->ReadyToRetry(RequesterOf(connection));
+}
+
+TcpStep EncapsulationServer::RetryTcp(TcpConnectionId id, hal::Micros now) {
+  Connection* connection = Find(id);
+  if (connection == nullptr) return TcpStep{0, {}, true};
+  if (!connection->pending) return TcpStep{};
+  connection->last_activity = now;
+  return AnswerAssembled(*connection, now);
+}
+
+bool EncapsulationServer::has_pending() const {
+  return std::any_of(connections_.begin(), connections_.end(),
+                     [](const Connection& c) { return c.open && c.pending; });
+}
+
+// Answers the assembled message, or keeps it when its reply is deferred.
+TcpStep EncapsulationServer::AnswerAssembled(Connection& connection, hal::Micros now) {
+  TcpStep step = Answer(connection, now);
+  if (connection.pending) {
+    step.pending = true;
+    return step;
+  }
+  connection.assembler.Next();
+  return step;
+}
+
+std::uint32_t EncapsulationServer::RequesterOf(const Connection& connection) const {
+  return static_cast<std::uint32_t>(&connection - connections_.data()) + 1;
 }
 
 TcpStep EncapsulationServer::Answer(Connection& connection, hal::Micros now) {
@@ -116,10 +155,19 @@ TcpStep EncapsulationServer::Answer(Connection& connection, hal::Micros now) {
       return TcpStep{0, {}, true};
     }
     size = EncodeEmptyReply(request, EncapStatus::kInvalidSessionHandle, buffer);
-  } else if (request.command == Cmd(EncapCommand::kSendRRData)) {
-    size = SendRRData(connection, request, body, now);
-  } else if (request.command == Cmd(EncapCommand::kSendUnitData)) {
-    size = SendUnitData(connection, request, body, now);
+  } else if (request.command == Cmd(EncapCommand::kSendRRData) ||
+             request.command == Cmd(EncapCommand::kSendUnitData)) {
+    RequestContext context;
+    context.now = now;
+    context.session_handle = connection.session_handle;
+    context.peer = connection.peer;
+    context.requester = RequesterOf(connection);
+    if (lifecycle_ != nullptr) lifecycle_->OnRequestStarted(context.requester);
+    size = request.command == Cmd(EncapCommand::kSendRRData) ? SendRRData(connection, request, body, context)
+                                                               : SendUnitData(connection, request, body, context);
+    connection.pending = context.pending && lifecycle_ != nullptr;
+    if (connection.pending) return TcpStep{};
+    if (lifecycle_ != nullptr) lifecycle_->OnRequestFinished(context.requester);
   } else {
     size = EncodeEmptyReply(request, EncapStatus::kInvalidCommand, buffer);
   }
@@ -159,7 +207,7 @@ std::size_t EncapsulationServer::RegisterSession(Connection& connection, const E
 }
 
 std::size_t EncapsulationServer::SendRRData(Connection& connection, const EncapsulationHeader& request,
-                                            std::span<const std::uint8_t> body, hal::Micros now) {
+                                            std::span<const std::uint8_t> body, RequestContext& context) {
   if (connection.session_handle == 0 || request.session_handle != connection.session_handle) {
     return EncodeEmptyReply(request, EncapStatus::kInvalidSessionHandle, tcp_reply_);
   }
@@ -169,10 +217,6 @@ std::size_t EncapsulationServer::SendRRData(Connection& connection, const Encaps
   const base::Result<UnconnectedMessage> message = ParseUnconnectedMessage(command->packet);
   if (!message.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
 
-  RequestContext context;
-  context.now = now;
-  context.session_handle = connection.session_handle;
-  context.peer = connection.peer;
   context.request_o_to_t = message->o_to_t;
   context.request_t_to_o = message->t_to_o;
 
@@ -187,6 +231,7 @@ std::size_t EncapsulationServer::SendRRData(Connection& connection, const Encaps
   const std::span<std::uint8_t> tail = out.Tail();
   if (!out.ok() || tail.size() < kSockaddrItemsRoom) return 0;  // cannot happen: the buffer is fixed
   out.Advance(router_.HandleUnconnected(message->request, context, tail.first(tail.size() - kSockaddrItemsRoom)));
+  if (context.pending) return 0;
   FinishCpfItem(out, data_at);
   std::uint16_t count = 2;
   if (context.reply_o_to_t) {
@@ -202,7 +247,7 @@ std::size_t EncapsulationServer::SendRRData(Connection& connection, const Encaps
 }
 
 std::size_t EncapsulationServer::SendUnitData(Connection& connection, const EncapsulationHeader& request,
-                                              std::span<const std::uint8_t> body, hal::Micros now) {
+                                              std::span<const std::uint8_t> body, RequestContext& context) {
   if (connection.session_handle == 0 || request.session_handle != connection.session_handle) {
     return EncodeEmptyReply(request, EncapStatus::kInvalidSessionHandle, tcp_reply_);
   }
@@ -212,11 +257,6 @@ std::size_t EncapsulationServer::SendUnitData(Connection& connection, const Enca
   const base::Result<ConnectedMessage> message = ParseConnectedMessage(command->packet);
   if (!message.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
   if (connected_ == nullptr) return 0;  // no connection manager: no class 3 connection can exist
-
-  RequestContext context;
-  context.now = now;
-  context.session_handle = connection.session_handle;
-  context.peer = connection.peer;
 
   ByteWriter out(tcp_reply_);
   EncodeEncapsulationHeader(ReplyHeaderFor(request, EncapStatus::kSuccess), out);

@@ -164,6 +164,8 @@ ServiceStatus MessageRouter::MultipleServicePacket(std::span<const std::uint8_t>
     const std::size_t end = i + 1 < count ? offsets.U16() : data.size();
     reply.PatchU16(base + 2 + 2 * i, static_cast<std::uint16_t>(reply.size() - base));
     const std::size_t size = Handle(data.subspan(start, end - start), context, reply.Tail(), depth + 1);
+    // A deferred member defers the whole packet: the retry runs every member again from the first.
+    if (context.pending) return Success();
     if (size == 0) return Error(GeneralStatus::kReplyDataTooLarge);
     const std::span<const std::uint8_t> member_reply = reply.Tail().first(size);
     if (member_reply[2] != static_cast<std::uint8_t>(GeneralStatus::kSuccess)) any_failed = true;

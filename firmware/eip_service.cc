@@ -70,14 +70,18 @@ void EipService::Poll(hal::Micros now) {
     }
   }
   for (Connection& connection : connections_) {
-    if (connection.pcb != nullptr && connection.input_size > 0) static_cast<void>(Serve(connection));
+    if (connection.pcb != nullptr && (connection.input_size > 0 || connection.pending)) {
+      static_cast<void>(Serve(connection));
+    }
   }
 }
 
 hal::Micros EipService::NextDeadline() const {
   // Input the core has not taken yet goes in on the next pass as soon as a reply fits.
+  // A deferred reply is retried on the pass after its drive accesses completed.
   for (const Connection& connection : connections_) {
-    if (connection.pcb != nullptr && connection.input_size > 0 && CanTakeReply(connection)) return 0;
+    if (connection.pcb == nullptr || !CanTakeReply(connection)) continue;
+    if (connection.pending ? server_.ReadyToRetry(connection.id) : connection.input_size > 0) return 0;
   }
   return server_.NextDeadline();
 }
@@ -112,6 +116,7 @@ err_t EipService::Accept(tcp_pcb* pcb) {
   connection.input_size = 0;
   connection.held_reply_size = 0;
   connection.close_after_reply = false;
+  connection.pending = false;
   AttachTcpConnection(pcb, &connection,
                       {&EipService::OnRecv, &EipService::OnSent, &EipService::OnError, &EipService::OnPoll},
                       options_.keepalive);
@@ -173,11 +178,22 @@ err_t EipService::Serve(Connection& connection) {
   }
   const hal::Micros now = clock_.NowMicros();
   std::size_t consumed_total = 0;
-  while (connection.input_size > consumed_total && CanTakeReply(connection)) {
-    const std::span<const std::uint8_t> input(connection.input.data() + consumed_total,
-                                              connection.input_size - consumed_total);
-    const cip::TcpStep step = server_.OnTcpData(connection.id, input, now);
+  while (CanTakeReply(connection)) {
+    cip::TcpStep step;
+    if (connection.pending) {
+      // The message is in the core already; its reply waits for drive accesses.
+      if (!server_.ReadyToRetry(connection.id)) break;
+      step = server_.RetryTcp(connection.id, now);
+      ++counters_.deferred_retries;
+    } else {
+      if (connection.input_size <= consumed_total) break;
+      const std::span<const std::uint8_t> input(connection.input.data() + consumed_total,
+                                                connection.input_size - consumed_total);
+      step = server_.OnTcpData(connection.id, input, now);
+    }
     consumed_total += step.consumed;
+    if (step.pending && !connection.pending) ++counters_.deferred_replies;
+    connection.pending = step.pending;
     if (!step.reply.empty()) {
       if (tcp_write(connection.pcb, step.reply.data(), static_cast<u16_t>(step.reply.size()),
                     TCP_WRITE_FLAG_COPY) == ERR_OK) {
@@ -193,7 +209,7 @@ err_t EipService::Serve(Connection& connection) {
       connection.close_after_reply = true;
       break;
     }
-    if (step.consumed == 0 && step.reply.empty()) break;  // cannot happen with input left; be safe
+    if (step.pending) break;
   }
   if (consumed_total > 0) {
     std::memmove(connection.input.data(), connection.input.data() + consumed_total,

@@ -49,6 +49,8 @@ struct EipCounters {
   std::uint32_t udp_received = 0;
   std::uint32_t udp_sent = 0;
   std::uint32_t udp_dropped = 0;     // too long, or no memory for the reply
+  std::uint32_t deferred_replies = 0;  // requests whose reply waited for drive accesses
+  std::uint32_t deferred_retries = 0;  // their executions after the accesses completed
 };
 
 class EipService final : public Service, public ConfigurableService {
@@ -85,6 +87,7 @@ class EipService final : public Service, public ConfigurableService {
     std::array<std::uint8_t, cip::kMaxReplyMessage> held_reply{};
     std::size_t held_reply_size = 0;
     bool close_after_reply = false;
+    bool pending = false;  // the core holds a message whose reply is deferred
   };
 
   static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);

@@ -91,6 +91,8 @@ void AppendDriveStats(const DriveReport& report, std::string& out) {
   Line(out, "eip.udp_received", e.udp_received);
   Line(out, "eip.udp_sent", e.udp_sent);
   Line(out, "eip.udp_dropped", e.udp_dropped);
+  Line(out, "eip.deferred_replies", e.deferred_replies);
+  Line(out, "eip.deferred_retries", e.deferred_retries);
   const firmware::ParameterWriterCounters& w = report.parameter_writer.counters();
   Line(out, "params.pending", report.parameter_writer.pending());
   Line(out, "params.written", w.written);

@@ -77,7 +77,8 @@ struct ConnectionCounters {
 
 class ConnectionManager final : public AttributeHandler,
                                 public ConnectedMessageHandler,
-                                public ConnectionCountProvider {
+                                public ConnectionCountProvider,
+                                public ConnectionTable {
  public:
   ConnectionManager(MessageRouter& router, const DeviceInfoProvider& device, hal::RandomSource& random,
                     const ConnectionManagerOptions& options = {});
@@ -106,7 +107,9 @@ class ConnectionManager final : public AttributeHandler,
   // 0011 when there is none.
   ExtendedDeviceStatus IoStatus() const;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
-  bool IsOwned(std::uint32_t consumed_point) const;
+  bool IsOwned(std::uint32_t consumed_point) const override;
+  // The open connections (at most out.size() of them, in table order); returns how many were written.
+  std::size_t ListConnections(std::span<ConnectionInfo> out) const override;
   const ConnectionCounters& counters() const { return counters_; }
   std::uint32_t missed_productions() const { return missed_productions_; }
   std::uint32_t dropped_datagrams() const { return dropped_datagrams_; }
@@ -188,7 +191,7 @@ class ConnectionManager final : public AttributeHandler,
   std::optional<ConnectionFailure> ValidateIo(const ForwardOpenRequest& request, Opening& opening) const;
   std::optional<ConnectionFailure> CheckCapacity(std::uint8_t transport_class, Opening& opening) const;
   ForwardOpenSuccess Open(const Opening& opening, RequestContext& context);
-  void Close(std::size_t index);
+  void Close(std::size_t index, CloseReason reason);
   void CloseOrphanedListeners();
   void ReleaseUnusedProducers();
   void NotifyChanged();

@@ -69,6 +69,9 @@ struct TcpStep {
   std::size_t consumed = 0;             // bytes of the input taken; call again with the rest
   std::span<const std::uint8_t> reply;  // send first (valid until the next OnTcpData)
   bool close = false;                   // then close the connection and call CloseTcpConnection
+  // The message is answered later (deferred reply): keep the input after `consumed`, feed nothing more
+  // and call RetryTcp once ReadyToRetry says so (docs/ethernetip.md "Deferred replies").
+  bool pending = false;
 };
 
 struct UdpSource {
@@ -95,12 +98,20 @@ class EncapsulationServer {
 
   // The connection manager, once it exists; without one, SendUnitData is never answered.
   void set_connected_handler(ConnectedMessageHandler* handler) { connected_ = handler; }
+  // The handlers' journal of deferred drive accesses; without one no request is ever deferred.
+  void set_request_lifecycle(RequestLifecycle* lifecycle) { lifecycle_ = lifecycle; }
 
   base::Result<TcpConnectionId> OpenTcpConnection(Ipv4Endpoint peer, hal::Micros now);
   void CloseTcpConnection(TcpConnectionId id);
   // Consumes input up to the end of the first complete message and answers it. An unknown id consumes
   // everything and asks for the connection to be closed.
+  // While a message of the connection is pending, nothing is consumed (TcpStep::pending again).
   TcpStep OnTcpData(TcpConnectionId id, std::span<const std::uint8_t> input, hal::Micros now);
+  // Deferred replies: whether the connection's pending message can be executed again now, and that
+  // execution (consumed is 0; the reply, or pending once more).
+  bool ReadyToRetry(TcpConnectionId id) const;
+  TcpStep RetryTcp(TcpConnectionId id, hal::Micros now);
+  bool has_pending() const;
 
   UdpDecision OnUdpDatagram(std::span<const std::uint8_t> datagram, const UdpSource& source, hal::Micros now);
   // Hands out one delayed reply that is due at `now`; false when none is.
@@ -118,6 +129,7 @@ class EncapsulationServer {
   struct Connection {
     bool open = false;
     bool expiry_reported = false;
+    bool pending = false;  // the assembled message waits for a deferred reply
     Ipv4Endpoint peer;
     std::uint32_t session_handle = 0;  // 0: no session registered on this connection
     hal::Micros last_activity = 0;
@@ -132,13 +144,16 @@ class EncapsulationServer {
 
   Connection* Find(TcpConnectionId id);
   TcpStep Answer(Connection& connection, hal::Micros now);
+  TcpStep AnswerAssembled(Connection& connection, hal::Micros now);
+  std::uint32_t RequesterOf(const Connection& connection) const;
   // Each writes the complete reply into tcp_reply_ and returns its size; 0 means no reply.
   std::size_t RegisterSession(Connection& connection, const EncapsulationHeader& request,
                               std::span<const std::uint8_t> body);
+  // Both set context.pending when the reply is deferred (and then return 0).
   std::size_t SendRRData(Connection& connection, const EncapsulationHeader& request,
-                         std::span<const std::uint8_t> body, hal::Micros now);
+                         std::span<const std::uint8_t> body, RequestContext& context);
   std::size_t SendUnitData(Connection& connection, const EncapsulationHeader& request,
-                           std::span<const std::uint8_t> body, hal::Micros now);
+                           std::span<const std::uint8_t> body, RequestContext& context);
   std::uint32_t NewSessionHandle();
   bool HandleInUse(std::uint32_t handle) const;
   void EndSession(Connection& connection);
@@ -149,6 +164,7 @@ class EncapsulationServer {
   const DiscoverySource& discovery_;
   hal::RandomSource& random_;
   ConnectedMessageHandler* connected_ = nullptr;
+  RequestLifecycle* lifecycle_ = nullptr;
   std::array<Connection, kMaxTcpConnections> connections_{};
   std::array<DelayedReply, kMaxDelayedReplies> delayed_{};
   std::array<std::uint8_t, kMaxReplyMessage> tcp_reply_{};

@@ -101,6 +101,19 @@ struct ConnectionInfo {
   std::uint32_t originator_address = 0;  // host order
   std::uint32_t o_to_t_connection_id = 0;
   std::uint32_t t_to_o_connection_id = 0;
+  std::uint32_t o_to_t_api = 0;  // µs
+  std::uint32_t t_to_o_api = 0;
+  hal::Micros timeout = 0;       // RPI x 4 x 2^multiplier
+  bool run = false;              // class 1: the last O->T run/idle bit (idle until data arrives)
+  bool multicast = false;        // class 1: T->O multicast
+};
+
+// Why a connection closed.
+enum class CloseReason : std::uint8_t {
+  kForwardClose,   // the originator closed it
+  kTimedOut,       // its inactivity watchdog ran out
+  kSessionClosed,  // class 3: its encapsulation session ended
+  kProducerGone,   // listen only: the last connection producing its point closed
 };
 
 class ConnectionEvents {
@@ -113,6 +126,18 @@ class ConnectionEvents {
   virtual void OnRunIdleChanged(const ConnectionInfo& connection, bool run) = 0;
   // A connection opened or closed for any reason (Identity status, Message Router attribute 3, LEDs).
   virtual void OnConnectionsChanged() = 0;
+  // One connection closed (before OnConnectionsChanged; a timeout also gets OnConnectionTimedOut).
+  virtual void OnConnectionClosed(const ConnectionInfo& /*connection*/, CloseReason /*reason*/) {}
+};
+
+// What the rest of the card may ask about the open connections (implemented by ConnectionManager).
+class ConnectionTable {
+ public:
+  virtual ~ConnectionTable() = default;
+  // The open connections (at most out.size() of them, in table order); returns how many were written.
+  virtual std::size_t ListConnections(std::span<ConnectionInfo> out) const = 0;
+  // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
+  virtual bool IsOwned(std::uint32_t consumed_point) const = 0;
 };
 
 // A T->O datagram to send from UDP port 2222.
