@@ -45,14 +45,13 @@ void RegisterProxy::NetworkRestored(hal::Micros /*now*/) {
   c536_ = 0;
   UpdateStatusValues();
   if (was_acting) {
-    // The action overwrote FA06: every word is written again, but only once the master sends words
-    // again (unless it already did while the action was in force). A fault-reset edge from before the
-    // action is stale now.
+    // The action overwrote FA06: every word is written again, but only once its master sends words
+    // again (unless it already did while the action was in force): the scanner words at the next
+    // SetCommandWords*, the drive command (still taken) at the next SetDriveCommand. A fault-reset edge
+    // from before the action is stale now.
     MarkCommandsUnknown();
-    if (!words_during_action_) {
-      armed_ = false;
-      fault_reset_edges_ = 0;
-    }
+    armed_ = static_cast<std::uint8_t>(armed_ & words_during_action_);
+    fault_reset_edges_ = static_cast<std::uint8_t>(fault_reset_edges_ & words_during_action_);
   }
   wake_ = true;
 }
@@ -124,15 +123,17 @@ void RegisterProxy::DecideLossAction() {
   loss_ = LossState::kActive;
   loss_action_ = config().loss_action;
   loss_action_written_ = false;
-  words_during_action_ = false;
+  words_during_action_ = 0;
   ++counters_.loss_actions;
 }
 
-// FA06 for c101 = 0, 2, 3, 5, from the master's FA06 word as held when the action runs.
+// FA06 for c101 = 0, 2, 3, 5, from the master's FA06 word as held when the action runs: the drive
+// command's while it is taken (a scanner word on FA06 is not written then), else the first scanner word
+// in use on FA06.
 std::uint16_t RegisterProxy::LossActionFa06() const {
-  std::uint16_t held = 0;
-  for (std::size_t w = 0; w < kScannerWordCount; ++w) {
-    if (commands_[w].target == reg::kFa06) {
+  std::uint16_t held = drive_taken_ ? drive_command_.fa06 : 0;
+  for (std::size_t w = 0; w < kScannerWordCount && !drive_taken_; ++w) {
+    if (commands_[w].target == reg::kFa06 && CommandWordInUse(w)) {
       held = held_[w];
       break;
     }

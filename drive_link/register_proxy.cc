@@ -176,11 +176,15 @@ void RegisterProxy::OnLinkStateChanged(LinkState previous, LinkState current) {
 
 void RegisterProxy::BeginLoad(bool card_reset) {
   if (card_reset) {
-    // Start-up or f899: the card starts afresh. Command words wait for the master's next words, no loss
-    // is known; what the front ends report from now on counts.
+    // Start-up or f899: the card starts afresh. Command words wait for the master's next words (the
+    // drive command is given back and waits for the next SetDriveCommand), no loss is known; what the
+    // front ends report from now on counts. Whether the drive feedback is wanted stays: it writes nothing.
     held_ = ScannerWords{};
-    armed_ = false;
+    drive_command_ = DriveCommandWords{};
+    armed_ = 0;
     claimed_ = false;
+    scanner_mask_ = kAllScannerWords;
+    drive_taken_ = false;
     fault_reset_edges_ = 0;
     loss_ = LossState::kNone;
     c536_ = 0;

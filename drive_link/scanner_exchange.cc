@@ -1,5 +1,7 @@
-// RegisterProxy: the cyclic exchange (scanner command words out, monitor words and FD01 in) and the values
-// the card writes back (docs/drive-link.md, "Cyclic exchange" and "Configuration at start-up and reset").
+// RegisterProxy: the cyclic exchange (command words out: the scanner words and the drive command; monitor
+// words, FD01 and the drive feedback in) and the values the card writes back (docs/drive-link.md, "Cyclic
+// exchange", "Drive command channel (CIP drive profile)" and "Configuration at start-up and reset"). The
+// DriveCommandChannel entry points are in drive_command_channel.cc.
 #include <algorithm>
 
 #include "drive_link/drive_registers.h"
@@ -53,8 +55,13 @@ void RegisterProxy::ApplyConfig() {
     commands_[i] = CommandWord{};
     commands_[i].target = CommandMenuTarget(config().command_menus[i]);
   }
-  PlanMonitorReads();
+  commands_[kDriveFa06Word] = CommandWord{};
+  commands_[kDriveFa06Word].target = reg::kFa06;
+  commands_[kDriveFa07Word] = CommandWord{};
+  commands_[kDriveFa07Word].target = reg::kFa07;
+  PlanMonitorReads(/*keep_values=*/false);
   fd01_known_ = false;
+  feedback_fresh_ = 0;
   cycle_end_known_ = false;
   // Everything the card owns is written again: the inverter may have been reset (RAM-only values at 0).
   for (std::size_t i = 0; i < owned_.size(); ++i) {
@@ -65,18 +72,33 @@ void RegisterProxy::ApplyConfig() {
   UpdateStatusValues();
 }
 
-void RegisterProxy::PlanMonitorReads() {
+// `keep_values`: the plan changes between loads (the drive feedback wanted or not) and the newest values
+// stay, so MonitorWords() does not drop to 0 until the next cycle. The sources of the monitor words keep
+// their positions (the feedback's come after them), so a read on the link completes into the right entry.
+void RegisterProxy::PlanMonitorReads(bool keep_values) {
+  const decltype(reads_) previous = reads_;
+  const std::size_t previous_count = keep_values ? read_count_ : 0;
   reads_ = {};
-  reads_[0].number = reg::kFd01;  // always: c555, the c103 condition, "running" for error mapping
-  read_count_ = 1;
-  for (std::size_t w = 0; w < kScannerWordCount; ++w) {
-    const std::uint16_t source = MonitorMenuSource(config().monitor_menus[w]);
-    word_read_[w] = kNoRead;
-    if (source == 0) continue;
+  read_count_ = 0;
+  const auto plan = [this](std::uint16_t source) {
     std::size_t r = 0;
     while (r < read_count_ && reads_[r].number != source) ++r;
     if (r == read_count_) reads_[read_count_++].number = source;
-    word_read_[w] = static_cast<std::uint8_t>(r);
+    return static_cast<std::uint8_t>(r);
+  };
+  plan(reg::kFd01);  // always: c555, the c103 condition, "running" for error mapping
+  for (std::size_t w = 0; w < kScannerWordCount; ++w) {
+    const std::uint16_t source = MonitorMenuSource(config().monitor_menus[w]);
+    word_read_[w] = source == 0 ? kNoRead : plan(source);
+  }
+  if (feedback_wanted_) {
+    plan(reg::kFd00);  // shared with a monitor word of menu 2
+    plan(reg::kFe02);
+  }
+  for (std::size_t r = 0; r < read_count_; ++r) {
+    for (std::size_t p = 0; p < previous_count; ++p) {
+      if (previous[p].number == reads_[r].number) reads_[r].value = previous[p].value;
+    }
   }
   // Block read: the leading F875-F879 positions up to the last one that covers a source still needed.
   block_read_count_ = 0;
@@ -106,32 +128,68 @@ ScannerWords RegisterProxy::MonitorWords() const {
 
 // ---- Command words -----------------------------------------------------------------------------------
 
-void RegisterProxy::SetCommandWords(const ScannerWords& words) {
+void RegisterProxy::SetCommandWords(const ScannerWords& words) { SetCommandWordsMasked(words, kAllScannerWords); }
+
+// A word outside `mask` keeps its held value (CommandWords(), c041-c046) and is not written; one that
+// comes back into the mask is written at once (while out, others could write its target).
+void RegisterProxy::SetCommandWordsMasked(const ScannerWords& words, std::uint8_t mask) {
+  mask = static_cast<std::uint8_t>(mask & kAllScannerWords);
   for (std::size_t w = 0; w < kScannerWordCount; ++w) {
+    if ((mask & Bit(w)) == 0) continue;
+    if ((scanner_mask_ & Bit(w)) == 0) commands_[w].written_valid = false;
     const bool rising = (held_[w] & reg::command_bit::kFaultReset) == 0 &&
                         (words[w] & reg::command_bit::kFaultReset) != 0;
-    if (commands_[w].target == reg::kFa06 && rising) fault_reset_edges_ |= Bit(w);
+    // A word the drive command displaces gets no edge: it would reset the inverter when given back.
+    if (commands_[w].target == reg::kFa06 && rising && !DisplacedByDriveCommand(w)) fault_reset_edges_ |= Bit(w);
+    held_[w] = words[w];
   }
-  held_ = words;
-  armed_ = true;
+  scanner_mask_ = mask;
+  armed_ = static_cast<std::uint8_t>(armed_ | kAllScannerWords);
   claimed_ = true;
-  if (loss_ == LossState::kActive) words_during_action_ = true;
+  if (loss_ == LossState::kActive) {
+    words_during_action_ = static_cast<std::uint8_t>(words_during_action_ | kAllScannerWords);
+  }
   wake_ = true;
 }
 
 bool RegisterProxy::IsScannerTarget(std::uint16_t number) const {
+  if (number == 0) return false;
+  // The drive profile owns FA06/FA07 while it has taken them.
+  if (drive_taken_ && (number == reg::kFa06 || number == reg::kFa07)) return true;
   // §9.1: with Modbus IO scanning enabled the targets are reserved even before the scanner sends; else
   // from the first words a master sends (Modbus IO scanning or CIP assemblies 102/105).
-  const bool in_use = claimed_ || (config().protocol == Protocol::kModbusTcp && config().io_scanning);
-  if (!in_use || number == 0) return false;
-  return std::any_of(commands_.begin(), commands_.end(),
-                     [number](const CommandWord& word) { return word.target == number; });
+  const bool claimed = claimed_ || (config().protocol == Protocol::kModbusTcp && config().io_scanning);
+  if (!claimed) return false;
+  for (std::size_t w = 0; w < kScannerWordCount; ++w) {
+    if (commands_[w].target == number && CommandWordInUse(w)) return true;
+  }
+  return false;
+}
+
+// A word in use: a scanner word whose menu is not 0, in the last mask and not displaced by the drive
+// command; a drive command word while taken. Its target is reserved (IsScannerTarget).
+bool RegisterProxy::CommandWordInUse(std::size_t w) const {
+  if (commands_[w].target == 0) return false;
+  if (w >= kScannerWordCount) return drive_taken_;
+  return (scanner_mask_ & Bit(w)) != 0 && !DisplacedByDriveCommand(w);
+}
+
+// ... and written: its words were sent since start/reset (and since a loss action was lifted), and no
+// loss action other than "continue" (c101 = 1) is in force.
+bool RegisterProxy::CommandWordWritable(std::size_t w) const {
+  return CommandWritesAllowed() && (armed_ & Bit(w)) != 0 && CommandWordInUse(w);
+}
+
+std::uint16_t RegisterProxy::HeldWord(std::size_t w) const {
+  if (w == kDriveFa06Word) return drive_command_.fa06;
+  if (w == kDriveFa07Word) return drive_command_.fa07;
+  return held_[w];
 }
 
 // The value word `w` puts on the wire: the master's word, except that FA06's fault-reset bit is sent once
 // per rising edge of the master's bit (a refresh after the reset would be a new edge: a second reset).
 std::uint16_t RegisterProxy::CommandValue(std::size_t w) const {
-  std::uint16_t value = held_[w];
+  std::uint16_t value = HeldWord(w);
   if (commands_[w].target == reg::kFa06) {
     value = static_cast<std::uint16_t>(value & ~reg::command_bit::kFaultReset);
     if ((fault_reset_edges_ & Bit(w)) != 0) value = static_cast<std::uint16_t>(value | reg::command_bit::kFaultReset);
@@ -139,20 +197,16 @@ std::uint16_t RegisterProxy::CommandValue(std::size_t w) const {
   return value;
 }
 
-// Only once the master has sent words since start/reset, and not while a loss action other than
-// "continue" (c101 = 1) is in force.
-bool RegisterProxy::CommandWritesAllowed() const {
-  return armed_ && !loss_action_active();
-}
+// Not while a loss action other than "continue" (c101 = 1) is in force: it owns FA06 then.
+bool RegisterProxy::CommandWritesAllowed() const { return !loss_action_active(); }
 
 // A changed word goes out in the next own slot, ahead of the rest of the cycle. Between two such writes
 // of the same word at least one other own transaction goes (a cycle step or a write-back), so a master
 // changing words faster than the link slows the monitor reads down but cannot stop them.
 bool RegisterProxy::UrgentCommandWrite(Job& job) {
-  if (!CommandWritesAllowed()) return false;
-  for (std::size_t w = 0; w < kScannerWordCount; ++w) {
+  for (std::size_t w = 0; w < kCommandWordCount; ++w) {
     const CommandWord& word = commands_[w];
-    if (word.target == 0 || (urgent_since_cycle_step_ & Bit(w)) != 0) continue;
+    if (!CommandWordWritable(w) || (urgent_since_cycle_step_ & Bit(w)) != 0) continue;
     if (word.written_valid && CommandValue(w) == word.written) continue;
     urgent_since_cycle_step_ = static_cast<std::uint8_t>(urgent_since_cycle_step_ | Bit(w));
     MakeCommandJob(w, job);
@@ -180,6 +234,7 @@ void RegisterProxy::MarkCommandsUnknown() {
 
 void RegisterProxy::OnCommandWritten(const Job& job, const Completion& completion) {
   ++counters_.command_writes;
+  if (job.index >= kScannerWordCount) ++counters_.drive_command_writes;
   const Transaction& sent = job.transaction;
   const bool fault_reset = sent.comm_number == reg::kFa06 && (sent.data & reg::command_bit::kFaultReset) != 0;
   if (fault_reset && (completion.ok() || completion.outcome == Outcome::kNoReply)) {
@@ -222,8 +277,9 @@ void RegisterProxy::EndCycle(hal::Micros now) {
   next_cycle_at_ = config_.min_cycle_period == 0 ? now : std::max(now, cycle_started_at_ + config_.min_cycle_period);
 }
 
-// One transaction of the cycle: refreshes (and changes) of command words, then the block read, then the
-// R reads. Between two cycles one housekeeping write may go (more while waiting for min_cycle_period).
+// One transaction of the cycle: refreshes (and changes) of command words (scanner words, then the drive
+// command), then the block read, then the R reads. Between two cycles one housekeeping write may go (more
+// while waiting for min_cycle_period).
 bool RegisterProxy::CycleJob(hal::Micros now, Job& job) {
   if (!NextCycleStep(now, job)) return false;
   urgent_since_cycle_step_ = 0;
@@ -233,10 +289,10 @@ bool RegisterProxy::CycleJob(hal::Micros now, Job& job) {
 bool RegisterProxy::NextCycleStep(hal::Micros now, Job& job) {
   for (int pass = 0; pass < 2; ++pass) {
     if (cycle_active_) {
-      while (cycle_command_ < kScannerWordCount) {
+      while (cycle_command_ < kCommandWordCount) {
         const std::size_t w = cycle_command_++;
         const CommandWord& word = commands_[w];
-        if (!CommandWritesAllowed() || word.target == 0) continue;
+        if (!CommandWordWritable(w)) continue;
         const bool due = !word.written_valid || CommandValue(w) != word.written ||
                          now - word.written_at >= config_.command_refresh_interval;
         if (!due) continue;
@@ -279,17 +335,27 @@ void RegisterProxy::OnMonitorRead(const Job& job, const Completion& completion) 
     return;
   }
   if (job.kind == JobKind::kMonitorRead) {
-    if (job.index < read_count_) reads_[job.index].value = completion.data;
-    if (job.index == 0) SetFd01(completion.data);
+    // The plan may have changed while the read was on the link (SetFeedbackWanted): only into its entry.
+    if (job.index < read_count_ && reads_[job.index].number == job.transaction.comm_number) {
+      StoreRead(job.index, completion.data);
+    }
     return;
   }
+  // Block positions stand for registers (their F875-F879 selections), whatever the plan is now.
   const std::size_t groups = std::min<std::size_t>(completion.block_read_count, block_read_count_);
   for (std::size_t p = 0; p < groups; ++p) {
-    if (block_target_[p] == 0) continue;
-    const std::size_t r = block_target_[p] - 1U;
-    reads_[r].value = completion.block_data[p];
-    if (r == 0) SetFd01(completion.block_data[p]);
+    if (block_target_[p] != 0) StoreRead(block_target_[p] - 1U, completion.block_data[p]);
   }
+}
+
+void RegisterProxy::StoreRead(std::size_t r, std::uint16_t value) {
+  reads_[r].value = value;
+  if (r == 0) SetFd01(value);
+  if (!feedback_wanted_) return;
+  // DriveFeedback().known: each of the three read since the feedback was wanted (and since the load).
+  if (reads_[r].number == reg::kFd01) feedback_fresh_ |= kFreshFd01;
+  if (reads_[r].number == reg::kFd00) feedback_fresh_ |= kFreshFd00;
+  if (reads_[r].number == reg::kFe02) feedback_fresh_ |= kFreshFe02;
 }
 
 void RegisterProxy::SetFd01(std::uint16_t fd01) {

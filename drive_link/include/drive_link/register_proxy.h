@@ -5,12 +5,14 @@
 //   kMaxPendingAccesses, refused locally where the card knows better than the inverter;
 // - ScannerImage: the cyclic exchange (command words c001-c006 out as RAM writes, monitor words
 //   c021-c026 and FD01 in, by block read where F875-F879 allow);
+// - DriveCommandChannel: FA06/FA07 taken over for the CIP drive profile, written by the same exchange as
+//   two more command words, and FD00/FE02 read in each cycle when wanted;
 // - LossSupervision: c100 delay, c103 condition and c101 action carried out over the link;
 // - the configuration: kConfigNumbers read at start-up, after f899 = 1 and after the link recovers from
 //   e-23, and the values the card owns written back (c502-c536, c555, c041-c066).
 //
-// docs/drive-link.md ("Register proxy", "Cyclic exchange", "Configuration at start-up and reset", "Loss
-// actions") gives every rule and its reason.
+// docs/drive-link.md ("Register proxy", "Cyclic exchange", "Drive command channel (CIP drive profile)",
+// "Configuration at start-up and reset", "Loss actions") gives every rule and its reason.
 //
 // Device-path code: no exceptions, RTTI, heap or threads; every pool has a fixed size. Time is injected:
 // Start(now), Poll(now) and NextDeadline() have the meaning of firmware::Service (absolute microseconds on
@@ -37,6 +39,16 @@ inline constexpr std::size_t kMaxPendingAccesses = 8;
 
 // F875-F879: the block read selections (seed 003 §4).
 inline constexpr std::size_t kBlockReadSelections = 5;
+
+// The command words the exchange writes: the 6 scanner words (index 0-5, targets from c001-c006), then
+// the drive command (6 = FA06, 7 = FA07, fixed targets, in use while taken). One table, so changes,
+// refreshes, the fault-reset edge and the loss rules are the same code for both; a uint8_t holds one bit
+// per word.
+inline constexpr std::size_t kCommandWordCount = kScannerWordCount + 2;
+inline constexpr std::size_t kDriveFa06Word = kScannerWordCount;
+inline constexpr std::size_t kDriveFa07Word = kScannerWordCount + 1;
+// SetCommandWordsMasked's mask with every scanner word (what SetCommandWords uses).
+inline constexpr std::uint8_t kAllScannerWords = (1U << kScannerWordCount) - 1;
 
 // Values the card owns and writes back: c502/c503, c517-c522, c524-c535, c536, c555, c041-c046, c061-c066.
 inline constexpr std::size_t kOwnedValueCount = 2 + 6 + 12 + 1 + 1 + 6 + 6;
@@ -72,9 +84,11 @@ struct ProxyCounters {
   hal::Micros cycle_period_last = 0;   // between the ends of the last two cycles
   hal::Micros cycle_period_min = 0;    // 0 until two cycles have ended
   hal::Micros cycle_period_max = 0;
-  std::uint32_t command_writes = 0;    // P writes of scanner command words (changes and refreshes)
+  std::uint32_t command_writes = 0;    // P writes of command words (changes and refreshes): scanner
+                                       // words and the drive command
   std::uint32_t command_errors = 0;    // ... refused by the inverter or unanswered
-  std::uint32_t monitor_reads = 0;     // R reads of monitor sources and FD01
+  std::uint32_t drive_command_writes = 0;  // the part of command_writes that wrote the drive command
+  std::uint32_t monitor_reads = 0;     // R reads of monitor sources, FD01 and the drive feedback
   std::uint32_t block_reads = 0;       // X requests reading monitor sources
   std::uint32_t monitor_errors = 0;    // monitor reads (R or X) that failed
   std::uint32_t owned_writes = 0;      // write-backs of c502-c536, c555, c041-c066
@@ -91,6 +105,7 @@ struct ProxyCounters {
 
 class RegisterProxy final : public DriveRegisters,
                             public ScannerImage,
+                            public DriveCommandChannel,
                             public LossSupervision,
                             private LinkObserver {
  public:
@@ -137,6 +152,14 @@ class RegisterProxy final : public DriveRegisters,
   ScannerWords MonitorWords() const override;
   bool IsScannerTarget(std::uint16_t number) const override;
 
+  // --- DriveCommandChannel (drive_command_channel.cc; SetCommandWordsMasked in scanner_exchange.cc) ---
+  void SetDriveCommand(const DriveCommandWords& words) override;
+  void ReleaseDriveCommand() override;
+  bool drive_command_taken() const override { return drive_taken_; }
+  void SetCommandWordsMasked(const ScannerWords& words, std::uint8_t mask) override;
+  void SetFeedbackWanted(bool wanted) override;
+  DriveFeedbackWords DriveFeedback() const override;
+
   // --- LossSupervision ---
   void NetworkLost(LossCause cause, hal::Micros now) override;
   void NetworkRestored(hal::Micros now) override;
@@ -152,7 +175,7 @@ class RegisterProxy final : public DriveRegisters,
     kConfigRead,    // index: position in kConfigNumbers, then F875-F879
     kLossCheck,     // index: 0 cmod, 1 fmod (c103 = 1/2)
     kLossAction,    // the c101 write
-    kCommandWrite,  // index: scanner word
+    kCommandWrite,  // index: command word (0-5 scanner words, 6/7 the drive command)
     kBlockRead,
     kMonitorRead,   // index: position in reads_
     kOwnedWrite,    // index: position in owned_
@@ -218,9 +241,12 @@ class RegisterProxy final : public DriveRegisters,
 
   // scanner_exchange.cc: command words, monitors, owned values.
   void ApplyConfig();
-  void PlanMonitorReads();
+  void PlanMonitorReads(bool keep_values);
+  std::uint16_t HeldWord(std::size_t word) const;
   std::uint16_t CommandValue(std::size_t word) const;
   bool CommandWritesAllowed() const;
+  bool CommandWordInUse(std::size_t word) const;
+  bool CommandWordWritable(std::size_t word) const;
   bool UrgentCommandWrite(Job& job);
   void MakeCommandJob(std::size_t word, Job& job);
   bool CycleJob(hal::Micros now, Job& job);
@@ -231,11 +257,16 @@ class RegisterProxy final : public DriveRegisters,
   void MarkCommandsUnknown();
   void OnCommandWritten(const Job& job, const Completion& completion);
   void OnMonitorRead(const Job& job, const Completion& completion);
+  void StoreRead(std::size_t read, std::uint16_t value);
   void SetFd01(std::uint16_t fd01);
   void SetOwned(std::size_t index, std::uint16_t value);
   void UpdateStatusValues();
   void SampleDisplay();
   void OnOwnedWritten(std::uint8_t index, const Completion& completion);
+
+  // drive_command_channel.cc.
+  bool DisplacedByDriveCommand(std::size_t word) const;
+  std::uint16_t PlannedReadValue(std::uint16_t number) const;
 
   // proxy_access.cc: on-demand accesses.
   base::Result<AccessToken> Accept(const Transaction& transaction, AccessListener& listener,
@@ -277,22 +308,34 @@ class RegisterProxy final : public DriveRegisters,
   ParsedConfig parsed_{};
   std::array<std::uint16_t, kBlockReadSelections> block_selections_{};
 
-  // Command words.
+  // Command words (bit i of the masks = commands_[i]).
   ScannerWords held_{};
-  std::array<CommandWord, kScannerWordCount> commands_{};
-  bool armed_ = false;    // the master sent words since start/reset: they may be written
-  bool claimed_ = false;  // ... ever since start/reset: their targets are reserved (IsScannerTarget)
+  DriveCommandWords drive_command_{};  // the drive profile's FA06/FA07 while taken ({} otherwise)
+  std::array<CommandWord, kCommandWordCount> commands_{};
+  // Bit per word: its words were sent since start/reset (scanner words: SetCommandWords*, the drive
+  // command: SetDriveCommand), so it may be written; cleared again when a loss action is lifted.
+  std::uint8_t armed_ = 0;
+  bool claimed_ = false;  // the master sent scanner words since start/reset: their targets are reserved
+  std::uint8_t scanner_mask_ = kAllScannerWords;  // the last SetCommandWordsMasked mask: the scanner words in use
+  bool drive_taken_ = false;          // SetDriveCommand since start/reset/ReleaseDriveCommand
   std::uint8_t fault_reset_edges_ = 0;  // bit per word: the master raised FA06 bit 13, send it once
   std::uint8_t urgent_since_cycle_step_ = 0;  // bit per word: written ahead of the cycle since its last step
 
-  // Monitors: FD01 first, then each distinct source of a monitor word in use.
-  std::array<MonitorRead, kScannerWordCount + 1> reads_{};
+  // Monitors: FD01 first, then each distinct source of a monitor word in use, then FD00 and FE02 when
+  // the drive feedback is wanted and no monitor word reads them already.
+  std::array<MonitorRead, kScannerWordCount + 3> reads_{};
   std::size_t read_count_ = 0;
   std::array<std::uint8_t, kScannerWordCount> word_read_{};  // monitor word -> reads_ index
   std::uint8_t block_read_count_ = 0;                        // nR of the block read; 0 = none
   std::array<std::uint8_t, kBlockReadSelections> block_target_{};  // block position -> reads_ index + 1
   std::uint16_t fd01_ = 0;
   bool fd01_known_ = false;
+  bool feedback_wanted_ = false;
+  // Bits of the feedback registers read since the feedback was wanted and since the last load.
+  static constexpr std::uint8_t kFreshFd01 = 1U << 0;
+  static constexpr std::uint8_t kFreshFd00 = 1U << 1;
+  static constexpr std::uint8_t kFreshFe02 = 1U << 2;
+  std::uint8_t feedback_fresh_ = 0;
 
   // The cycle.
   bool cycle_active_ = false;
@@ -320,7 +363,7 @@ class RegisterProxy final : public DriveRegisters,
   std::uint8_t loss_check_index_ = 0;
   std::uint16_t checked_cmod_ = 0;
   std::uint16_t checked_fmod_ = 0;
-  bool words_during_action_ = false;
+  std::uint8_t words_during_action_ = 0;  // bit per word: sent again while the action was in force
 
   // On-demand accesses.
   std::array<Access, kMaxPendingAccesses> accesses_{};

@@ -66,6 +66,7 @@ inline constexpr std::uint16_t kFc90 = 0xFC90;  // trip code in force
 inline constexpr std::uint16_t kFc91 = 0xFC91;  // alarm bits
 inline constexpr std::uint16_t kFd00 = 0xFD00;  // output frequency, 0.01 Hz
 inline constexpr std::uint16_t kFd01 = 0xFD01;  // status word 1
+inline constexpr std::uint16_t kFe02 = 0xFE02;  // frequency command in force, 0.01 Hz (held at a trip)
 inline constexpr std::uint16_t kFe14 = 0xFE14;  // cumulative run time, hours
 
 // Trip codes (FC90) the card causes or reports.

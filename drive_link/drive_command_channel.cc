@@ -1,0 +1,93 @@
+// RegisterProxy: DriveCommandChannel, FA06/FA07 for the CIP drive profile and the feedback it needs
+// (docs/drive-link.md, "Drive command channel (CIP drive profile)"). The drive command is command words 6
+// and 7 of the exchange's table (scanner_exchange.cc), so it is written by the same code as the scanner
+// words: changes at once, refreshes, RAM only, the fault-reset edge, no writes during a loss action.
+// SetCommandWordsMasked is with the scanner words in scanner_exchange.cc.
+#include "drive_link/drive_registers.h"
+#include "drive_link/register_proxy.h"
+
+namespace drive_link {
+namespace {
+
+constexpr std::uint8_t kDriveCommandWords = (1U << kDriveFa06Word) | (1U << kDriveFa07Word);
+
+constexpr std::uint8_t Bit(std::size_t word) { return static_cast<std::uint8_t>(1U << word); }
+
+constexpr bool IsDriveCommandTarget(std::uint16_t number) { return number == reg::kFa06 || number == reg::kFa07; }
+
+}  // namespace
+
+void RegisterProxy::SetDriveCommand(const DriveCommandWords& words) {
+  if (!drive_taken_) {
+    // Take-over: FA06 and FA07 are written at once, whatever a scanner word wrote there before. A
+    // fault-reset edge a displaced scanner word still had pending is dropped with it.
+    drive_taken_ = true;
+    commands_[kDriveFa06Word].written_valid = false;
+    commands_[kDriveFa07Word].written_valid = false;
+    for (std::size_t w = 0; w < kScannerWordCount; ++w) {
+      if (DisplacedByDriveCommand(w)) fault_reset_edges_ = static_cast<std::uint8_t>(fault_reset_edges_ & ~Bit(w));
+    }
+  }
+  // drive_command_ is {} before a take-over: bit 13 already set in the first words is an edge, as it is
+  // for the scanner words' first words after start/reset.
+  const bool rising = (drive_command_.fa06 & reg::command_bit::kFaultReset) == 0 &&
+                      (words.fa06 & reg::command_bit::kFaultReset) != 0;
+  if (rising) fault_reset_edges_ = static_cast<std::uint8_t>(fault_reset_edges_ | Bit(kDriveFa06Word));
+  drive_command_ = words;
+  armed_ = static_cast<std::uint8_t>(armed_ | kDriveCommandWords);
+  if (loss_ == LossState::kActive) {
+    words_during_action_ = static_cast<std::uint8_t>(words_during_action_ | kDriveCommandWords);
+  }
+  wake_ = true;
+}
+
+void RegisterProxy::ReleaseDriveCommand() {
+  if (!drive_taken_) return;
+  // Nothing is written for the release itself: what the drive should do then (stop, keep running) is the
+  // drive profile's decision, made with its last SetDriveCommand.
+  drive_taken_ = false;
+  drive_command_ = DriveCommandWords{};
+  const auto keep = static_cast<std::uint8_t>(~kDriveCommandWords);
+  armed_ = static_cast<std::uint8_t>(armed_ & keep);
+  fault_reset_edges_ = static_cast<std::uint8_t>(fault_reset_edges_ & keep);
+  words_during_action_ = static_cast<std::uint8_t>(words_during_action_ & keep);
+  // Scanner words on FA06/FA07 take over again, written at once: the registers hold the drive profile's
+  // values, not theirs.
+  for (std::size_t w = 0; w < kScannerWordCount; ++w) {
+    if (IsDriveCommandTarget(commands_[w].target)) commands_[w].written_valid = false;
+  }
+  wake_ = true;
+}
+
+bool RegisterProxy::DisplacedByDriveCommand(std::size_t w) const {
+  return drive_taken_ && w < kScannerWordCount && IsDriveCommandTarget(commands_[w].target);
+}
+
+// FD00 and FE02 are read in each cycle only while wanted: the Modbus side's cycle does not pay for them.
+// The plan changes at once (the monitor words' reads keep their values); `known` starts over.
+void RegisterProxy::SetFeedbackWanted(bool wanted) {
+  if (wanted == feedback_wanted_) return;
+  feedback_wanted_ = wanted;
+  feedback_fresh_ = 0;
+  if (loaded_) PlanMonitorReads(/*keep_values=*/true);  // otherwise planned when the load ends
+  wake_ = true;
+}
+
+DriveFeedbackWords RegisterProxy::DriveFeedback() const {
+  DriveFeedbackWords feedback;
+  feedback.fd01 = fd01_;
+  feedback.fd00 = PlannedReadValue(reg::kFd00);
+  feedback.fe02 = PlannedReadValue(reg::kFe02);
+  feedback.known = feedback_wanted_ && feedback_fresh_ == (kFreshFd01 | kFreshFd00 | kFreshFe02);
+  return feedback;
+}
+
+// The newest value of a source in the read plan; 0 when it is not read.
+std::uint16_t RegisterProxy::PlannedReadValue(std::uint16_t number) const {
+  for (std::size_t r = 0; r < read_count_; ++r) {
+    if (reads_[r].number == number) return reads_[r].value;
+  }
+  return 0;
+}
+
+}  // namespace drive_link
