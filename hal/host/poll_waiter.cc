@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <climits>
+#include <ctime>
 
 namespace hal::host {
 
@@ -19,17 +20,22 @@ void PollWaiter::WaitUntil(Micros deadline) {
   for (PollSource* source : sources_) source->PrepareWait(set_, deadline);
 
   const Micros now = clock_.NowMicros();
-  int timeout_ms = 0;
+  // ppoll with a timespec: microsecond resolution, so an I/O production slot 1 ms away is not rounded
+  // to a whole millisecond (poll's unit). The process's timer slack (set in main) bounds the lateness.
+  timespec timeout{};
+  const timespec* timeout_ptr = &timeout;
   if (deadline == kNever) {
-    timeout_ms = -1;
+    timeout_ptr = nullptr;
   } else if (deadline > now) {
-    // Round up: waking a little late is harmless, waking early just costs one more pass.
-    const Micros ms = (deadline - now + kMicrosPerMilli - 1) / kMicrosPerMilli;
-    timeout_ms = ms > static_cast<Micros>(INT_MAX) ? INT_MAX : static_cast<int>(ms);
+    const Micros wait = deadline - now;
+    constexpr Micros kMaxWait = static_cast<Micros>(INT_MAX) * kMicrosPerSecond;
+    const Micros bounded = wait > kMaxWait ? kMaxWait : wait;
+    timeout.tv_sec = static_cast<time_t>(bounded / kMicrosPerSecond);
+    timeout.tv_nsec = static_cast<long>((bounded % kMicrosPerSecond) * 1000);
   }
   ++wait_count_;
   // EINTR (a signal) just ends the wait early; the loop runs another pass.
-  const int rc = poll(set_.data(), static_cast<nfds_t>(set_.size()), timeout_ms);
+  const int rc = ppoll(set_.data(), static_cast<nfds_t>(set_.size()), timeout_ptr, nullptr);
   if (rc < 0) {
     for (std::size_t i = 0; i < set_.size(); ++i) set_.data()[i].revents = 0;
   }
