@@ -63,6 +63,7 @@ cip::DeviceStatus CardIdentity::Status() const {
   const bool tripped = proxy_.drive_status_known() && (proxy_.drive_status() & reg::status_bit::kTripped) != 0;
   status.major_recoverable_fault = link_fault || tripped;
   status.extended = status.major_recoverable_fault ? cip::ExtendedDeviceStatus::kMajorFault
+                   : connections_ != nullptr       ? connections_->IoStatus()
                                                    : cip::ExtendedDeviceStatus::kNoIoConnections;
   return status;
 }
@@ -96,6 +97,21 @@ cip::InterfaceConfiguration CardTcpIp::ActiveConfiguration() const {
   active.name_server_2 = settings_.static_configuration.name_server_2;
   active.domain_name = settings_.static_configuration.domain_name;
   return active;
+}
+
+// CIP Vol. 2 §3-5.3: with allocation control 0 each device takes a block of 32 groups from 239.192.1.0,
+// chosen by its host ID so that devices of one subnet do not share groups; with 1, the configured range.
+std::uint32_t CardTcpIp::MulticastGroup(std::size_t index) const {
+  const cip::MulticastConfiguration& multicast = settings_.multicast;
+  if (multicast.allocation_control == 1) {
+    return index < multicast.num_mcast ? multicast.start_address + static_cast<std::uint32_t>(index) : 0;
+  }
+  constexpr std::uint32_t kBase = 0xEFC00100;  // 239.192.1.0
+  constexpr std::uint32_t kGroupsPerDevice = 32;
+  if (index >= kGroupsPerDevice) return 0;
+  const netif& nif = netif_.lwip_netif();
+  const std::uint32_t host_id = HostOrder(netif_ip4_addr(&nif)) & ~HostOrder(netif_ip4_netmask(&nif));
+  return kBase + ((host_id - 1U) & 0x3FFU) * kGroupsPerDevice + static_cast<std::uint32_t>(index);
 }
 
 bool CardTcpIp::ConfigurationValid() const { return HostOrder(netif_ip4_addr(&netif_.lwip_netif())) != 0; }

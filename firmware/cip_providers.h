@@ -17,7 +17,9 @@
 
 #include "card_netif.h"
 #include "cip/providers.h"
+#include "cip/io_connection.h"
 #include "configurable_service.h"
+#include "io_service.h"
 #include "drive_link/register_proxy.h"
 #include "hal/nv_store.h"
 #include "parameter_writer.h"
@@ -34,6 +36,8 @@ class CardIdentity final : public cip::DeviceInfoProvider, public DriveIdentityS
   // FB05 as read from the inverter: 0x09 is a VF-S15, anything else is shown as a VF-MB1 (the
   // default until the code is read; docs/ethernetip.md).
   void OnDriveIdentity(std::uint16_t fb05, std::uint16_t fe08) override;
+  // The CIP connections, for the I/O bits of the status word (none: "no I/O connections").
+  void set_connections(const cip::ConnectionTable* connections) { connections_ = connections; }
 
   cip::MacAddress Mac() const override;
   cip::DriveModel Model() const override { return model_; }
@@ -44,10 +48,14 @@ class CardIdentity final : public cip::DeviceInfoProvider, public DriveIdentityS
  private:
   hal::FramePort& port_;
   const drive_link::RegisterProxy& proxy_;
+  const cip::ConnectionTable* connections_ = nullptr;
   cip::DriveModel model_ = cip::DriveModel::kVfMb1;
 };
 
-class CardTcpIp final : public cip::TcpIpProvider, public ConfigurableService {
+class CardTcpIp final : public cip::TcpIpProvider,
+                        public cip::MulticastAddressProvider,
+                        public MulticastTtlSource,
+                        public ConfigurableService {
  public:
   CardTcpIp(CardNetif& netif, ParameterWriter& writer, hal::NvStore& store);
 
@@ -61,6 +69,10 @@ class CardTcpIp final : public cip::TcpIpProvider, public ConfigurableService {
   void ClearLastConflict() override {}
   cip::TcpIpSettings StoredSettings() const override { return settings_; }
   base::Status StoreSettings(const cip::TcpIpSettings& settings) override;
+
+  // Multicast productions (TCP/IP attributes 8 and 9): docs/ethernetip.md "Multicast".
+  std::uint32_t MulticastGroup(std::size_t index) const override;
+  std::uint8_t MulticastTtl() const override { return settings_.ttl; }
 
  private:
   void LoadExtras();

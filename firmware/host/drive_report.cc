@@ -39,6 +39,37 @@ std::string List(const Array& values) {
   return text;
 }
 
+// The CIP connections, class 1 I/O, connection losses and deferred drive accesses.
+void AppendCipStats(const firmware::EtherNetIpCard& card, std::string& out) {
+  const cip::ConnectionManager& cm = card.connections();
+  Line(out, "cip.connections", cm.ActiveConnections());
+  const cip::ConnectionCounters& c = cm.counters();
+  Line(out, "cip.open_requests", c.open_requests);
+  Line(out, "cip.open_format_rejects", c.open_format_rejects);
+  Line(out, "cip.open_resource_rejects", c.open_resource_rejects);
+  Line(out, "cip.open_other_rejects", c.open_other_rejects);
+  Line(out, "cip.close_requests", c.close_requests);
+  Line(out, "cip.connection_timeouts", c.connection_timeouts);
+  Line(out, "cip.missed_productions", cm.missed_productions());
+  Line(out, "cip.dropped_datagrams", cm.dropped_datagrams());
+  Line(out, "cip.io_status", static_cast<std::uint64_t>(cm.IoStatus()));
+  const firmware::CipLossCounters& l = card.supervisor().counters();
+  Line(out, "cip.lost", card.supervisor().lost() ? 1 : 0);
+  Line(out, "cip.loss_timeouts", l.timeouts);
+  Line(out, "cip.loss_owner_closes", l.owner_closes);
+  Line(out, "cip.loss_idle", l.idle_transitions);
+  Line(out, "cip.losses", l.losses);
+  Line(out, "cip.restores", l.restores);
+  Line(out, "cip.journal_accesses", card.journal().accesses_started());
+  Line(out, "cip.journal_completions", card.journal().completions());
+  const firmware::IoCounters& io = card.io_service().counters();
+  Line(out, "io.open", card.io_service().running() ? 1 : 0);
+  Line(out, "io.received", io.received);
+  Line(out, "io.too_long", io.too_long);
+  Line(out, "io.sent", io.sent);
+  Line(out, "io.send_failed", io.send_failed);
+}
+
 }  // namespace
 
 void AppendDriveStats(const DriveReport& report, std::string& out) {
@@ -78,10 +109,10 @@ void AppendDriveStats(const DriveReport& report, std::string& out) {
   Line(out, "modbus.idle_closes", m.idle_closes);
   Line(out, "modbus.lost", report.modbus_service.counters().lost);
   Line(out, "modbus.loss_state", static_cast<std::uint64_t>(report.modbus_server.loss_state()));
-  const firmware::EipCounters& e = report.eip_service.counters();
-  Line(out, "eip.listening", report.eip_service.listening() ? 1 : 0);
-  Line(out, "eip.connections", report.encapsulation.connection_count());
-  Line(out, "eip.sessions", report.encapsulation.session_count());
+  const firmware::EipCounters& e = report.eip_card.eip_service().counters();
+  Line(out, "eip.listening", report.eip_card.eip_service().listening() ? 1 : 0);
+  Line(out, "eip.connections", report.eip_card.encapsulation().connection_count());
+  Line(out, "eip.sessions", report.eip_card.encapsulation().session_count());
   Line(out, "eip.accepted", e.accepted);
   Line(out, "eip.refused", e.refused);
   Line(out, "eip.closed_by_peer", e.closed_by_peer);
@@ -93,6 +124,7 @@ void AppendDriveStats(const DriveReport& report, std::string& out) {
   Line(out, "eip.udp_dropped", e.udp_dropped);
   Line(out, "eip.deferred_replies", e.deferred_replies);
   Line(out, "eip.deferred_retries", e.deferred_retries);
+  AppendCipStats(report.eip_card, out);
   const firmware::ParameterWriterCounters& w = report.parameter_writer.counters();
   Line(out, "params.pending", report.parameter_writer.pending());
   Line(out, "params.written", w.written);

@@ -1,5 +1,5 @@
 // The control socket's view of the drive link, the register proxy and the front ends: `stats` lines
-// (drive.*, proxy.*, modbus.*, eip.*, params.*) and the `config` command (the configuration read from the inverter and
+// (drive.*, proxy.*, modbus.*, eip.*, cip.*, io.*, params.*) and the `config` command (the configuration read from the inverter and
 // every problem found in it). Kept apart from card_report.cc, which covers the network side.
 #pragma once
 
@@ -7,8 +7,7 @@
 
 #include "drive_link/register_proxy.h"
 #include "modbus/server.h"
-#include "cip/encapsulation_server.h"
-#include "eip_service.h"
+#include "ethernet_ip_card.h"
 #include "modbus_tcp_service.h"
 #include "parameter_writer.h"
 
@@ -18,8 +17,7 @@ struct DriveReport {
   const drive_link::RegisterProxy& proxy;
   const modbus::Server& modbus_server;
   const firmware::ModbusTcpService& modbus_service;
-  const cip::EncapsulationServer& encapsulation;
-  const firmware::EipService& eip_service;
+  const firmware::EtherNetIpCard& eip_card;
   const firmware::ParameterWriter& parameter_writer;
 };
 

@@ -10,11 +10,9 @@
 #include "card_netif.h"
 #include "card_report.h"
 #include "card_status_publisher.h"
-#include "cip/cip_device.h"
-#include "cip_providers.h"
 #include "control_server.h"
 #include "drive_link/register_proxy.h"
-#include "eip_service.h"
+#include "ethernet_ip_card.h"
 #include "event_loop.h"
 #include "file_nv_store.h"
 #include "host_clock.h"
@@ -206,20 +204,23 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   modbus::Server modbus_server(proxy, proxy, proxy);
   firmware::ModbusTcpService modbus_service(modbus_server, clock, {.port = 502, .keepalive = options.tcp_keepalive});
 
-  // The EtherNet/IP side (docs/ethernetip.md): the CIP objects on the card's providers, the
-  // encapsulation server bound to TCP/UDP 44818. Settings the CIP objects store go to the inverter's
-  // c-parameters through the parameter writer, or to the card's own store.
+  // The EtherNet/IP side (docs/ethernetip.md "In the firmware"): CIP objects on the card's providers,
+  // the encapsulation server on TCP/UDP 44818, class 1 I/O on UDP 2222 with the drive assemblies, the
+  // drive objects. Settings the CIP objects store go to the inverter's c-parameters through the
+  // parameter writer, or to the card's own store.
   firmware::ParameterWriter parameter_writer(proxy);
-  firmware::CardIdentity cip_identity(*port, proxy);
-  firmware::CardTcpIp cip_tcpip(netif, parameter_writer, *store.value());
-  firmware::CardEthernetLinks cip_links(netif, parameter_writer);
-  cip::CipDevice cip_device({cip_identity, cip_tcpip, cip_links, reset, random});
-  firmware::EipService eip_service(cip_device.encapsulation(), clock, {.keepalive = options.tcp_keepalive});
+  firmware::EtherNetIpCard eip_card({*port, netif, proxy, parameter_writer, *store.value(), reset, random, clock},
+                                    {.keepalive = options.tcp_keepalive, .connections = {}});
+  if (base::Status started = eip_card.Start(); !started.ok()) {
+    error = std::string("EtherNet/IP: ") + base::StatusName(started);
+    return CardExit::kFailed;
+  }
 
   // Every configuration read from the inverter goes to these (c500 picks the protocol whose ports open).
-  const std::array<firmware::ConfigurableService*, 4> front_ends{&modbus_service, &eip_service, &cip_tcpip,
-                                                                 &cip_links};
-  firmware::CardStatusPublisher publisher(proxy, modbus_server, front_ends, netif, kFirmwareVersion, &cip_identity);
+  std::array<firmware::ConfigurableService*, 6> front_ends{&modbus_service};
+  std::copy(eip_card.front_ends().begin(), eip_card.front_ends().end(), front_ends.begin() + 1);
+  firmware::CardStatusPublisher publisher(proxy, modbus_server, front_ends, netif, kFirmwareVersion,
+                                          &eip_card.identity_sink());
   proxy.SetConfigListener(&publisher);
   if (base::Status started = proxy.Start(clock.NowMicros()); !started.ok()) {
     error = std::string("drive link: ") + base::StatusName(started);
@@ -227,15 +228,14 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   }
   loop.AddService(proxy_service).IgnoreError();
   loop.AddService(modbus_service).IgnoreError();
-  loop.AddService(eip_service).IgnoreError();
+  for (firmware::Service* service : eip_card.services()) loop.AddService(*service).IgnoreError();
   loop.AddService(parameter_writer).IgnoreError();
   loop.AddService(publisher).IgnoreError();
 
   SignalSource signals;
   waiter.Register(signals);
 
-  const DriveReport drive_report{proxy, modbus_server, modbus_service, cip_device.encapsulation(), eip_service,
-                                 parameter_writer};
+  const DriveReport drive_report{proxy, modbus_server, modbus_service, eip_card, parameter_writer};
   CardReport report{netif, loop, leds, waiter, &drive_report};
   std::unique_ptr<ControlServer> control;
   if (!options.sim_control_path.empty()) {

@@ -230,21 +230,18 @@ def walk():
     ask(c, get(0x02, 1, 3), "8E 00 00 00 00 00", "Message Router attribute 3")
     ok("Message Router: class attributes, 16 connections available, 0 active")
 
-    # Assembly 0x04 (§4.3): the class follows the registered instances (none until the I/O issue).
+    # Assembly 0x04 (§4.3): 13 instances, the highest 199 (the §5 assemblies and the heartbeat 199).
     for attribute, value in ((1, "02 00"), (6, "07 00"), (7, "04 00")):
         ask(c, get(0x04, 0, attribute), "8E 00 00 00" + value, f"Assembly class attribute {attribute}")
-    present = []
-    for instance in (20, 21, 70, 71, 100, 101, 102, 105, 150, 151, 152, 155):
-        size = c.get_attribute_single(0x04, instance, 4)
-        if size.general == 0x16:
-            continue
-        same(f"Assembly {instance} size", (size.general, len(size.data)), (0, 2))
+    sizes = {20: 4, 21: 4, 70: 4, 71: 4, 100: 16, 101: 8, 102: 12, 105: 18, 150: 16, 151: 8, 152: 12, 155: 18, 199: 0}
+    for instance, size in sizes.items():
+        ask(c, get(0x04, instance, 4), H("8E 00 00 00") + struct.pack("<H", size), f"Assembly {instance} size")
         data = c.get_attribute_single(0x04, instance, 3)
-        same(f"Assembly {instance} data size", (data.general, len(data.data)), (0, struct.unpack("<H", size.data)[0]))
-        present.append(instance)
-    ask(c, get(0x04, 0, 2), H("8E 00 00 00") + struct.pack("<H", max(present, default=0)), "Assembly max instance")
-    ask(c, get(0x04, 0, 3), H("8E 00 00 00") + struct.pack("<H", len(present)), "Assembly instance count")
-    ok(f"Assembly: revision 2, instances {present or 'none'} registered and the class attributes agree")
+        same(f"Assembly {instance} data size", (data.general, len(data.data)), (0, size))
+    ask(c, get(0x04, 0, 2), "8E 00 00 00 C7 00", "Assembly max instance")
+    ask(c, get(0x04, 0, 3), "8E 00 00 00 0D 00", "Assembly instance count")
+    ask(c, get(0x04, 198, 3), "8E 00 16 00", "Assembly 198 is a connection point only")
+    ok("Assembly: revision 2, the 13 instances of §4.3/§5 with their sizes, max instance 199")
 
     # Port 0xF4 (§4.10).
     for attribute, value in ((1, "01 00"), (2, "01 00"), (3, "01 00"), (6, "09 00"), (7, "07 00"), (8, "01 00"),
@@ -541,10 +538,10 @@ def negative():
             (H("0E 03 43 01 20 01 24 01"), "8E 00 04 00", "unknown segment type"),
             # unknown class 0x05 / instance 0x16 / attribute 0x14, member 0x05
             (get(0x70, 1, 1), "8E 00 05 00", "class 0x70"),
-            (get(0x06, 1, 1), "8E 00 05 00", "class 0x06 (no Connection Manager yet)"),
+            (get(0x06, 2, 1), "8E 00 16 00", "Connection Manager instance 2"),
             (get(0x01, 2, 1), "8E 00 16 00", "Identity instance 2"),
             (get(0xF6, 3, 1), "8E 00 16 00", "Ethernet Link instance 3"),
-            (get(0x04, 100, 3), "8E 00 16 00", "Assembly instance 100 (not registered)"),
+            (get(0x04, 103, 3), "8E 00 16 00", "Assembly instance 103 (no such assembly)"),
             (get(0x01, 1, 8), "8E 00 14 00", "Identity attribute 8"),
             (get(0xF5, 1, 7), "8E 00 14 00", "TCP/IP attribute 7 (placeholder only in Get_Attributes_All)"),
             (get(0x01, 0, 5), "8E 00 14 00", "Identity class attribute 5"),

@@ -40,6 +40,7 @@ class CipDevice final : public DiscoverySource {
   CipDevice& operator=(const CipDevice&) = delete;
 
   EncapsulationServer& encapsulation() { return encapsulation_; }
+  const EncapsulationServer& encapsulation() const { return encapsulation_; }
   MessageRouter& router() { return router_; }
   ObjectRegistry& objects() { return objects_; }
   AssemblyObject& assemblies() { return assemblies_; }

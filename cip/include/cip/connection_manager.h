@@ -105,7 +105,7 @@ class ConnectionManager final : public AttributeHandler,
   // Identity status bits 4-7: 0010 after a class 1 timeout (until a class 1 connection opens again),
   // else 0110 when an I/O connection is in run mode, 0111 when I/O connections are open and all idle,
   // 0011 when there is none.
-  ExtendedDeviceStatus IoStatus() const;
+  ExtendedDeviceStatus IoStatus() const override;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   bool IsOwned(std::uint32_t consumed_point) const override;
   // The open connections (at most out.size() of them, in table order); returns how many were written.

@@ -26,6 +26,7 @@
 #include "cip/byte_io.h"
 #include "cip/explicit_messaging.h"
 #include "cip/forward_open.h"
+#include "cip/providers.h"
 #include "hal/clock.h"
 
 namespace cip {
@@ -138,6 +139,8 @@ class ConnectionTable {
   virtual std::size_t ListConnections(std::span<ConnectionInfo> out) const = 0;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   virtual bool IsOwned(std::uint32_t consumed_point) const = 0;
+  // The Identity status bits 4-7 the connections call for.
+  virtual ExtendedDeviceStatus IoStatus() const = 0;
 };
 
 // A T->O datagram to send from UDP port 2222.
