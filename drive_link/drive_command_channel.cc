@@ -69,17 +69,20 @@ void RegisterProxy::SetFeedbackWanted(bool wanted) {
   if (wanted == feedback_wanted_) return;
   feedback_wanted_ = wanted;
   feedback_fresh_ = 0;
+  feedback_snapshot_ = {};
   if (loaded_) PlanMonitorReads(/*keep_values=*/true);  // otherwise planned when the load ends
   wake_ = true;
 }
 
 DriveFeedbackWords RegisterProxy::DriveFeedback() const {
-  DriveFeedbackWords feedback;
-  feedback.fd01 = fd01_;
-  feedback.fd00 = PlannedReadValue(reg::kFd00);
-  feedback.fe02 = PlannedReadValue(reg::kFe02);
-  feedback.known = feedback_wanted_ && feedback_fresh_ == (kFreshFd01 | kFreshFd00 | kFreshFe02);
-  return feedback;
+  return feedback_wanted_ ? feedback_snapshot_ : DriveFeedbackWords{};
+}
+
+// At the end of each cycle: the three registers of this cycle become the feedback, once all three have
+// been read since the feedback was wanted.
+void RegisterProxy::TakeFeedbackSnapshot() {
+  if (!feedback_wanted_ || feedback_fresh_ != (kFreshFd01 | kFreshFd00 | kFreshFe02)) return;
+  feedback_snapshot_ = DriveFeedbackWords{fd01_, PlannedReadValue(reg::kFd00), PlannedReadValue(reg::kFe02), true};
 }
 
 // The newest value of a source in the read plan; 0 when it is not read.

@@ -62,6 +62,7 @@ void RegisterProxy::ApplyConfig() {
   PlanMonitorReads(/*keep_values=*/false);
   fd01_known_ = false;
   feedback_fresh_ = 0;
+  feedback_snapshot_ = {};
   cycle_end_known_ = false;
   // Everything the card owns is written again: the inverter may have been reset (RAM-only values at 0).
   for (std::size_t i = 0; i < owned_.size(); ++i) {
@@ -265,6 +266,7 @@ void RegisterProxy::StartCycle(hal::Micros now) {
 void RegisterProxy::EndCycle(hal::Micros now) {
   cycle_active_ = false;
   ++counters_.cycles;
+  TakeFeedbackSnapshot();
   if (cycle_end_known_) {
     const hal::Micros period = now - last_cycle_end_;
     counters_.cycle_period_last = period;

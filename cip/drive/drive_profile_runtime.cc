@@ -337,8 +337,10 @@ void DriveProfileRuntime::ComputeFeedback() {
   FeedbackOptions options;
   options.pole_pairs = config_.pole_pairs;
   feedback_ = MakeFeedback(monitors, supervisor_.state(), control_sources(), options);
-  // Until FD00/FE02 are read both are 0, which would look like "at reference".
-  if (!words.known) feedback_.at_reference = false;
+  // Until FD00/FE02 are read both are 0, which would look like "at reference"; and the three words
+  // come from one exchange cycle, whose FD01 must show the drive running too (the supervisor follows the
+  // newest FD01, which may be a cycle ahead of them).
+  if (!words.known || (words.fd01 & drive_link::reg::status_bit::kRunning) == 0) feedback_.at_reference = false;
 }
 
 bool DriveProfileRuntime::FillInput(std::uint32_t instance, std::span<std::uint8_t> out) const {

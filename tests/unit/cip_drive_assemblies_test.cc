@@ -162,6 +162,21 @@ TEST_F(DriveAssembliesTest, NativeForwardAndReverse60Hz) {
   EXPECT_EQ(Produce(150, 4), Hex("00 48 00 00"));
 }
 
+// The supervisor follows the newest FD01; FD00/FE02 and their FD01 come from one exchange cycle. While
+// that cycle's FD01 does not show the drive running yet (it just started), 71 is not "at reference"
+// although FD00 = FE02 = 0 (the eip_scanner test saw `F4 04 00 00` for one packet at each start).
+TEST_F(DriveAssembliesTest, AtReferenceWaitsForTheFeedbackCycleThatSeesTheDriveRunning) {
+  card_.Drive(kStandby);
+  Consume(21, Hex("61 00 08 07"));
+  card_.status.status = DriveStatus{true, kRunningForward};
+  card_.channel.feedback = drive_link::DriveFeedbackWords{kStandby, 0, 0, true};
+  EXPECT_EQ(Produce(71, 4), Hex("74 04 00 00"));
+  card_.channel.feedback = drive_link::DriveFeedbackWords{kRunningForward, 0x0100, 0x1770, true};
+  EXPECT_EQ(Produce(71, 4), Hex("74 04 4D 00"));  // 2.56 Hz = 77 rpm (2 pole pairs)
+  card_.channel.feedback = drive_link::DriveFeedbackWords{kRunningForward, 0x1770, 0x1770, true};
+  EXPECT_EQ(Produce(71, 4), Hex("F4 04 08 07"));
+}
+
 TEST_F(DriveAssembliesTest, NativeParameterRunsAs21AndAnswersInIts151) {
   card_.Drive(kStandby);
   Consume(101, Hex("61 00 08 07 68 02 00 00"));  // forward 1800 rpm, read f268

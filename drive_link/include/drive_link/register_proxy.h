@@ -254,6 +254,7 @@ class RegisterProxy final : public DriveRegisters,
   bool HousekeepingJob(hal::Micros now, Job& job);
   void StartCycle(hal::Micros now);
   void EndCycle(hal::Micros now);
+  void TakeFeedbackSnapshot();
   void MarkCommandsUnknown();
   void OnCommandWritten(const Job& job, const Completion& completion);
   void OnMonitorRead(const Job& job, const Completion& completion);
@@ -336,6 +337,9 @@ class RegisterProxy final : public DriveRegisters,
   static constexpr std::uint8_t kFreshFd00 = 1U << 1;
   static constexpr std::uint8_t kFreshFe02 = 1U << 2;
   std::uint8_t feedback_fresh_ = 0;
+  // FD01, FD00 and FE02 as the end of the last cycle left them: one consistent set (a drive that just
+  // started must not look "at reference" because FD00 and FE02 are still the stopped cycle's zeros).
+  DriveFeedbackWords feedback_snapshot_{};
 
   // The cycle.
   bool cycle_active_ = false;
