@@ -18,6 +18,7 @@ constexpr bool IsDriveCommandTarget(std::uint16_t number) { return number == reg
 }  // namespace
 
 void RegisterProxy::SetDriveCommand(const DriveCommandWords& words) {
+  released_fa06_valid_ = false;
   if (!drive_taken_) {
     // Take-over: FA06 and FA07 are written at once, whatever a scanner word wrote there before. A
     // fault-reset edge a displaced scanner word still had pending is dropped with it.
@@ -46,6 +47,10 @@ void RegisterProxy::ReleaseDriveCommand() {
   // Nothing is written for the release itself: what the drive should do then (stop, keep running) is the
   // drive profile's decision, made with its last SetDriveCommand.
   drive_taken_ = false;
+  // FA06 keeps the drive profile's last value in the inverter: a loss action reported after the release
+  // (a connection closed, then c100 ran out) decelerates or presets from it (LossActionFa06).
+  released_fa06_ = drive_command_.fa06;
+  released_fa06_valid_ = true;
   drive_command_ = DriveCommandWords{};
   const auto keep = static_cast<std::uint8_t>(~kDriveCommandWords);
   armed_ = static_cast<std::uint8_t>(armed_ & keep);

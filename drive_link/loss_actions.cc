@@ -129,11 +129,13 @@ void RegisterProxy::DecideLossAction() {
 
 // FA06 for c101 = 0, 2, 3, 5, from the master's FA06 word as held when the action runs: the drive
 // command's while it is taken (a scanner word on FA06 is not written then), else the first scanner word
-// in use on FA06.
+// in use on FA06 that the master has sent, else the drive command's last FA06 if it was released since (the connection that
+// held it closed before c100 ran out).
 std::uint16_t RegisterProxy::LossActionFa06() const {
-  std::uint16_t held = drive_taken_ ? drive_command_.fa06 : 0;
+  std::uint16_t held = drive_taken_ ? drive_command_.fa06 : released_fa06_valid_ ? released_fa06_ : 0;
   for (std::size_t w = 0; w < kScannerWordCount && !drive_taken_; ++w) {
-    if (commands_[w].target == reg::kFa06 && CommandWordInUse(w)) {
+    // Only a word the master has sent: one never sent wrote nothing to FA06.
+    if (commands_[w].target == reg::kFa06 && CommandWordInUse(w) && (armed_ & (1U << w)) != 0) {
       held = held_[w];
       break;
     }

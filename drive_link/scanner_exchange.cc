@@ -63,6 +63,7 @@ void RegisterProxy::ApplyConfig() {
   fd01_known_ = false;
   feedback_fresh_ = 0;
   feedback_snapshot_ = {};
+  released_fa06_valid_ = false;
   cycle_end_known_ = false;
   // Everything the card owns is written again: the inverter may have been reset (RAM-only values at 0).
   for (std::size_t i = 0; i < owned_.size(); ++i) {

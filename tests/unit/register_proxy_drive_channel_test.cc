@@ -493,6 +493,26 @@ TEST_F(RegisterProxyDriveChannelLossTest, Action2DeceleratesFromTheDriveCommands
   EXPECT_GT(Reg(kFd00), 0);  // decelerating, not coasting
 }
 
+// The connection that held the drive command closed first, then c100 ran out (integration.eip_io found
+// the action working from an empty FA06): decelerate keeps the released command's priority bits and
+// preset speed its frequency priority.
+TEST_F(RegisterProxyDriveChannelLossTest, Action2AfterTheReleaseDeceleratesFromTheReleasedFa06) {
+  RunThenLose(2);
+  proxy_->ReleaseDriveCommand();
+  const auto at = RunUntilTrue([this] { return Reg(kFa06) != 0xC400; }, kSecond);
+  ASSERT_TRUE(at.has_value());
+  EXPECT_GE(*at, deadline_);
+  EXPECT_EQ(Reg(kFa06), 0xC000);
+}
+
+TEST_F(RegisterProxyDriveChannelLossTest, ATakeOverForgetsTheReleasedFa06) {
+  RunThenLose(2);
+  proxy_->ReleaseDriveCommand();
+  proxy_->SetDriveCommand({0x8400, 0x1770});  // another holder, without frequency priority
+  proxy_->ReleaseDriveCommand();
+  ASSERT_TRUE(RunUntilTrue([this] { return Reg(kFa06) == 0x8000; }, kSecond).has_value());
+}
+
 // ---- Reloads -------------------------------------------------------------------------------------------
 
 TEST_F(RegisterProxyDriveChannelTest, F899ReloadForgetsTheDriveCommand) {

@@ -340,6 +340,9 @@ class RegisterProxy final : public DriveRegisters,
   // FD01, FD00 and FE02 as the end of the last cycle left them: one consistent set (a drive that just
   // started must not look "at reference" because FD00 and FE02 are still the stopped cycle's zeros).
   DriveFeedbackWords feedback_snapshot_{};
+  // The drive command's FA06 when it was released, for a loss action that follows (until taken again).
+  std::uint16_t released_fa06_ = 0;
+  bool released_fa06_valid_ = false;
 
   // The cycle.
   bool cycle_active_ = false;
