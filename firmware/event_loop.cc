@@ -26,11 +26,26 @@ hal::Micros EventLoop::NextDeadline(hal::Micros now) const {
   return deadline;
 }
 
+void EventLoop::PollDue(hal::Micros now) {
+  for (std::size_t i = 0; i < service_count_; ++i) {
+    if (services_[i]->NextDeadline() <= now) services_[i]->Poll(now);
+  }
+}
+
 void EventLoop::RunOnce() {
   ++stats_.passes;
   if (netif_.SyncLinkState()) ++stats_.link_changes;
 
-  const std::size_t frames = netif_.PumpReceive(kMaxFramesPerPass);
+  // Frames in batches; after each full batch the services whose deadline has passed run at once, so
+  // an I/O production slot waits for at most one batch of requests, not for a whole pass.
+  std::size_t frames = 0;
+  while (frames < kMaxFramesPerPass) {
+    const std::size_t batch = std::min(kFramesPerBatch, kMaxFramesPerPass - frames);
+    const std::size_t taken = netif_.PumpReceive(batch);
+    frames += taken;
+    if (taken < batch || frames == kMaxFramesPerPass) break;
+    PollDue(clock_.NowMicros());
+  }
   stats_.frames_in += frames;
 
   sys_check_timeouts();

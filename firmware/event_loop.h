@@ -3,7 +3,8 @@
 // One pass (RunOnce):
 //   1. bring lwIP's link state in line with the ports (a cable pulled or plugged);
 //   2. move up to kMaxFramesPerPass received frames into lwIP (bounded, so a flood cannot starve
-//      timers or I/O production);
+//      timers or I/O production), kFramesPerBatch at a time: after each full batch, the services whose
+//      deadline has passed are polled (an I/O production waits for one batch, not a whole pass);
 //   3. run lwIP's due timers (sys_check_timeouts);
 //   4. let every service do what is due at `now` (protocol timers, RPI production, drive link);
 //   5. sleep in the Waiter until the earliest deadline of lwIP and the services, or until I/O.
@@ -27,7 +28,8 @@ namespace firmware {
 class Service {
  public:
   virtual ~Service() = default;
-  // Does whatever is due at `now`. Called once per pass, whatever woke the loop.
+  // Does whatever is due at `now`. Called once per pass, whatever woke the loop, and also between
+  // batches of received frames when NextDeadline() has passed.
   virtual void Poll(hal::Micros now) = 0;
   // The next instant at which Poll() must run even if no I/O arrives; hal::kNever for none.
   virtual hal::Micros NextDeadline() const = 0;
@@ -44,6 +46,7 @@ class EventLoop {
  public:
   static constexpr std::size_t kMaxServices = 16;
   static constexpr std::size_t kMaxFramesPerPass = 32;
+  static constexpr std::size_t kFramesPerBatch = 8;
 
   EventLoop(const hal::Clock& clock, hal::Waiter& waiter, CardNetif& netif)
       : clock_(clock), waiter_(waiter), netif_(netif) {}
@@ -57,6 +60,7 @@ class EventLoop {
 
  private:
   hal::Micros NextDeadline(hal::Micros now) const;
+  void PollDue(hal::Micros now);  // the services whose deadline is at or before `now`
 
   const hal::Clock& clock_;
   hal::Waiter& waiter_;

@@ -92,6 +92,38 @@ TEST_F(EventLoopTest, FloodOfFrames_PassBoundedAndDoesNotSleep) {
   EXPECT_EQ(loop.stats().frames_in, firmware::EventLoop::kMaxFramesPerPass + 5);
 }
 
+// Notes how many frames still waited in the port when its deadline was served.
+class DueProbe final : public firmware::Service {
+ public:
+  DueProbe(Micros due, const hal::test::FakeFramePort& port) : due_(due), port_(port) {}
+  void Poll(Micros now) override {
+    if (due_ > now) return;
+    pending_when_served.push_back(port_.pending());
+    due_ = hal::kNever;
+  }
+  Micros NextDeadline() const override { return due_; }
+  std::vector<std::size_t> pending_when_served;
+
+ private:
+  Micros due_;
+  const hal::test::FakeFramePort& port_;
+};
+
+TEST_F(EventLoopTest, FloodOfFrames_DueServiceServedAfterOneBatchNotAfterThePass) {
+  firmware::EventLoop loop(clock_, waiter_, netif_);
+  DueProbe probe(clock_.NowMicros(), port_);  // e.g. an I/O production slot that is due
+  ASSERT_TRUE(loop.AddService(probe).ok());
+  for (std::size_t i = 0; i < firmware::EventLoop::kMaxFramesPerPass; ++i) {
+    port_.Inject(std::vector<std::uint8_t>(60, 0xFF));
+  }
+  loop.RunOnce();
+  ASSERT_EQ(probe.pending_when_served.size(), 1u);  // served once, between the batches
+  EXPECT_EQ(probe.pending_when_served[0],
+            firmware::EventLoop::kMaxFramesPerPass - firmware::EventLoop::kFramesPerBatch);
+  EXPECT_EQ(port_.pending(), 0u);
+  EXPECT_EQ(loop.stats().frames_in, firmware::EventLoop::kMaxFramesPerPass);
+}
+
 TEST_F(EventLoopTest, LinkLost_NetifFollowsOnNextPass) {
   firmware::EventLoop loop(clock_, waiter_, netif_);
   port_.SetLink(hal::PortId::kLeft, false);
