@@ -206,15 +206,27 @@ std::size_t EncapsulationServer::RegisterSession(Connection& connection, const E
   return out.ok() ? out.size() : 0;
 }
 
-std::size_t EncapsulationServer::SendRRData(Connection& connection, const EncapsulationHeader& request,
-                                            std::span<const std::uint8_t> body, RequestContext& context) {
+// What SendRRData and SendUnitData check alike: the connection's own session, the interface handle and
+// timeout, a Common Packet Format. The error reply's size, or nullopt with `command` decoded.
+std::optional<std::size_t> EncapsulationServer::CheckSendData(const Connection& connection,
+                                                              const EncapsulationHeader& request,
+                                                              std::span<const std::uint8_t> body,
+                                                              SendDataCommand& command) {
   if (connection.session_handle == 0 || request.session_handle != connection.session_handle) {
     return EncodeEmptyReply(request, EncapStatus::kInvalidSessionHandle, tcp_reply_);
   }
   if (body.size() < kSendDataPrefix) return EncodeEmptyReply(request, EncapStatus::kInvalidLength, tcp_reply_);
-  const base::Result<SendDataCommand> command = DecodeSendDataCommand(body);
-  if (!command.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
-  const base::Result<UnconnectedMessage> message = ParseUnconnectedMessage(command->packet);
+  const base::Result<SendDataCommand> decoded = DecodeSendDataCommand(body);
+  if (!decoded.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
+  command = *decoded;
+  return std::nullopt;
+}
+
+std::size_t EncapsulationServer::SendRRData(Connection& connection, const EncapsulationHeader& request,
+                                            std::span<const std::uint8_t> body, RequestContext& context) {
+  SendDataCommand command;
+  if (const std::optional<std::size_t> error = CheckSendData(connection, request, body, command)) return *error;
+  const base::Result<UnconnectedMessage> message = ParseUnconnectedMessage(command.packet);
   if (!message.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
 
   context.request_o_to_t = message->o_to_t;
@@ -248,13 +260,9 @@ std::size_t EncapsulationServer::SendRRData(Connection& connection, const Encaps
 
 std::size_t EncapsulationServer::SendUnitData(Connection& connection, const EncapsulationHeader& request,
                                               std::span<const std::uint8_t> body, RequestContext& context) {
-  if (connection.session_handle == 0 || request.session_handle != connection.session_handle) {
-    return EncodeEmptyReply(request, EncapStatus::kInvalidSessionHandle, tcp_reply_);
-  }
-  if (body.size() < kSendDataPrefix) return EncodeEmptyReply(request, EncapStatus::kInvalidLength, tcp_reply_);
-  const base::Result<SendDataCommand> command = DecodeSendDataCommand(body);
-  if (!command.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
-  const base::Result<ConnectedMessage> message = ParseConnectedMessage(command->packet);
+  SendDataCommand command;
+  if (const std::optional<std::size_t> error = CheckSendData(connection, request, body, command)) return *error;
+  const base::Result<ConnectedMessage> message = ParseConnectedMessage(command.packet);
   if (!message.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
   if (connected_ == nullptr) return 0;  // no connection manager: no class 3 connection can exist
 

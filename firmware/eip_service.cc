@@ -180,7 +180,8 @@ err_t EipService::Serve(Connection& connection) {
   std::size_t consumed_total = 0;
   while (CanTakeReply(connection)) {
     cip::TcpStep step;
-    if (connection.pending) {
+    const bool retry = connection.pending;
+    if (retry) {
       // The message is in the core already; its reply waits for drive accesses.
       if (!server_.ReadyToRetry(connection.id)) break;
       step = server_.RetryTcp(connection.id, now);
@@ -210,6 +211,7 @@ err_t EipService::Serve(Connection& connection) {
       break;
     }
     if (step.pending) break;
+    if (!retry && step.consumed == 0 && step.reply.empty()) break;  // cannot happen with input left; be safe
   }
   if (consumed_total > 0) {
     std::memmove(connection.input.data(), connection.input.data() + consumed_total,

@@ -39,7 +39,15 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace {
+
+using bench::CpuSeconds;
+using bench::Get16;
+using bench::Get32;
+using bench::Put16;
+using bench::Put32;
 
 using Clock = std::chrono::steady_clock;
 
@@ -58,18 +66,6 @@ struct Options {
   bool mix = false;
 };
 
-void Put16(std::uint8_t* p, std::uint16_t v) {
-  p[0] = static_cast<std::uint8_t>(v);
-  p[1] = static_cast<std::uint8_t>(v >> 8);
-}
-void Put32(std::uint8_t* p, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-std::uint16_t Get16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
-std::uint32_t Get32(const std::uint8_t* p) {
-  return static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
-         (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
-}
 
 // The 24-byte encapsulation header; the sender context carries a 64-bit sequence number.
 void PutHeader(std::uint8_t* p, std::uint16_t command, std::uint16_t length, std::uint32_t session,
@@ -278,13 +274,6 @@ bool OnReadable(Session& s, bool measuring, Totals& totals) {
         std::chrono::duration_cast<std::chrono::microseconds>(now - s.sent).count()));
   }
   return true;
-}
-
-double CpuSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
 }
 
 std::uint32_t Percentile(const std::vector<std::uint32_t>& sorted, double p) {

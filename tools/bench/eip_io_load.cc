@@ -57,7 +57,15 @@
 #include <thread>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace {
+
+using bench::CpuSeconds;
+using bench::Get16;
+using bench::Get32;
+using bench::Put16;
+using bench::Put32;
 
 constexpr std::size_t kHeaderSize = 24;
 constexpr std::uint16_t kRegisterSession = 0x0065;
@@ -87,18 +95,6 @@ struct Options {
   std::vector<ConnSpec> conns;
 };
 
-void Put16(std::uint8_t* p, std::uint16_t v) {
-  p[0] = static_cast<std::uint8_t>(v);
-  p[1] = static_cast<std::uint8_t>(v >> 8);
-}
-void Put32(std::uint8_t* p, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) p[i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-std::uint16_t Get16(const std::uint8_t* p) { return static_cast<std::uint16_t>(p[0] | (p[1] << 8)); }
-std::uint32_t Get32(const std::uint8_t* p) {
-  return static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
-         (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
-}
 
 std::int64_t MonotonicNs() {
   timespec t{};
@@ -475,13 +471,6 @@ Stats Summarize(std::vector<double> intervals_us, std::vector<double> jitter_us)
   s.jitter_p99 = Percentile(jitter_us, 0.99);
   s.jitter_max = jitter_us.back();
   return s;
-}
-
-double CpuSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
 }
 
 int Usage() {

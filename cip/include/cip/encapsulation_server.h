@@ -26,9 +26,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 
 #include "base/status.h"
+#include "cip/cpf.h"
 #include "cip/encapsulation.h"
 #include "cip/explicit_messaging.h"
 #include "cip/tcp_message_assembler.h"
@@ -149,6 +151,8 @@ class EncapsulationServer {
   // Each writes the complete reply into tcp_reply_ and returns its size; 0 means no reply.
   std::size_t RegisterSession(Connection& connection, const EncapsulationHeader& request,
                               std::span<const std::uint8_t> body);
+  std::optional<std::size_t> CheckSendData(const Connection& connection, const EncapsulationHeader& request,
+                                           std::span<const std::uint8_t> body, SendDataCommand& command);
   // Both set context.pending when the reply is deferred (and then return 0).
   std::size_t SendRRData(Connection& connection, const EncapsulationHeader& request,
                          std::span<const std::uint8_t> body, RequestContext& context);
