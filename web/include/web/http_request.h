@@ -30,20 +30,27 @@ inline constexpr std::size_t kMaxBody = 4096;          // 413 beyond
 
 enum class HttpStatus : std::uint16_t {
   kOk = 200,
+  kAccepted = 202,
   kNoContent = 204,
+  kNotModified = 304,
   kBadRequest = 400,
   kUnauthorized = 401,
   kForbidden = 403,
   kNotFound = 404,
   kMethodNotAllowed = 405,
+  kRequestTimeout = 408,
+  kConflict = 409,
   kLengthRequired = 411,
   kPayloadTooLarge = 413,
   kUriTooLong = 414,
+  kUnsupportedMediaType = 415,
+  kUnprocessable = 422,
   kTooManyRequests = 429,
   kHeaderFieldsTooLarge = 431,
   kInternalError = 500,
   kNotImplemented = 501,
   kServiceUnavailable = 503,
+  kGatewayTimeout = 504,
   kVersionNotSupported = 505,
 };
 

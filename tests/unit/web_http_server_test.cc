@@ -1,0 +1,320 @@
+// The web server's response writer, JSON writer/reader and connection core: exact answers on the wire,
+// keep-alive and pipelining, deferred answers, slots and eviction, window accounting, timeouts
+// (docs/web.md "Connections").
+#include "web/http_server.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <string_view>
+
+#include "web/json.h"
+
+namespace web {
+namespace {
+
+std::span<const std::uint8_t> Bytes(std::string_view text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+std::string Text(std::span<const std::uint8_t> bytes) { return std::string(bytes.begin(), bytes.end()); }
+
+// --- HttpResponseWriter --------------------------------------------------------------------------------
+
+TEST(WebHttpResponseTest, BodyInBufferGetsLengthAndConnection) {
+  std::array<std::uint8_t, 256> buffer{};
+  HttpResponseWriter writer(buffer);
+  writer.Start(HttpStatus::kOk);
+  writer.Header("Content-Type", "application/json");
+  writer.BodyText("{\"a\":1}");
+  writer.Finish(false, true);
+  EXPECT_FALSE(writer.overflowed());
+  EXPECT_EQ(Text(writer.head()),
+            "HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nContent-Length: 7\r\n"
+            "Connection: keep-alive\r\n\r\n{\"a\":1}");
+}
+
+TEST(WebHttpResponseTest, ExternalBodyAndHead) {
+  static constexpr std::uint8_t kAsset[] = {1, 2, 3, 4, 5};
+  std::array<std::uint8_t, 256> buffer{};
+  HttpResponseWriter writer(buffer);
+  writer.Start(HttpStatus::kOk);
+  writer.ExternalBody(kAsset);
+  writer.Finish(false, false);
+  EXPECT_EQ(Text(writer.head()), "HTTP/1.1 200 OK\r\nContent-Length: 5\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(writer.external_body().size(), 5U);
+
+  writer.Start(HttpStatus::kOk);
+  writer.ExternalBody(kAsset);
+  writer.Finish(true, true);  // HEAD: the length GET would carry, no body
+  EXPECT_EQ(Text(writer.head()), "HTTP/1.1 200 OK\r\nContent-Length: 5\r\nConnection: keep-alive\r\n\r\n");
+  EXPECT_TRUE(writer.external_body().empty());
+}
+
+TEST(WebHttpResponseTest, NoContentAndNotModifiedCarryNoLength) {
+  std::array<std::uint8_t, 128> buffer{};
+  HttpResponseWriter writer(buffer);
+  writer.Start(HttpStatus::kNoContent);
+  writer.Finish(false, true);
+  EXPECT_EQ(Text(writer.head()), "HTTP/1.1 204 No Content\r\nConnection: keep-alive\r\n\r\n");
+  writer.Start(HttpStatus::kNotModified);
+  writer.Header("ETag", "\"abc\"");
+  writer.Finish(false, true);
+  EXPECT_EQ(Text(writer.head()), "HTTP/1.1 304 Not Modified\r\nETag: \"abc\"\r\nConnection: keep-alive\r\n\r\n");
+}
+
+TEST(WebHttpResponseTest, TooLargeBecomesBodiless500) {
+  std::array<std::uint8_t, 96> buffer{};
+  HttpResponseWriter writer(buffer);
+  writer.Start(HttpStatus::kOk);
+  writer.BodyText(std::string(200, 'x'));
+  writer.Finish(false, true);
+  EXPECT_TRUE(writer.overflowed());
+  EXPECT_EQ(writer.status(), HttpStatus::kInternalError);
+  EXPECT_EQ(Text(writer.head()),
+            "HTTP/1.1 500 Internal Server Error\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
+}
+
+// --- JSON ---------------------------------------------------------------------------------------------
+
+TEST(WebJsonTest, WriterPlacesCommasAndEscapes) {
+  std::array<std::uint8_t, 128> buffer{};
+  JsonWriter json(buffer);
+  json.BeginObject().Key("n").Number(-42).Key("s").String("a\"b\\c\n").Key("l").BeginArray();
+  json.Number(1).Bool(true).Null().Hex4(0xC500).EndArray().Key("o").BeginObject().EndObject().EndObject();
+  ASSERT_FALSE(json.overflowed());
+  EXPECT_EQ(std::string(buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(json.size())),
+            R"({"n":-42,"s":"a\"b\\c\u000a","l":[1,true,null,"C500"],"o":{}})");
+}
+
+TEST(WebJsonTest, WriterStopsAtTheEnd) {
+  std::array<std::uint8_t, 8> buffer{};
+  JsonWriter json(buffer);
+  json.BeginObject().Key("password").String("x").EndObject();
+  EXPECT_TRUE(json.overflowed());
+  EXPECT_EQ(json.size(), 8U);
+}
+
+TEST(WebJsonTest, ReaderTakesAFlatObject) {
+  JsonObject object;
+  ASSERT_TRUE(ParseFlatJsonObject(Bytes(R"( { "number" : "0009", "value":-100,"ok":true,"x":null } )"), object));
+  EXPECT_EQ(object.count, 4U);
+  EXPECT_EQ(object.StringOf("number"), std::optional<std::string_view>("0009"));
+  EXPECT_EQ(object.IntegerOf("value"), std::optional<std::int64_t>(-100));
+  EXPECT_EQ(object.BoolOf("ok"), std::optional<bool>(true));
+  EXPECT_EQ(object.IntegerOf("number"), std::nullopt);  // wrong kind
+  EXPECT_EQ(object.StringOf("missing"), std::nullopt);
+  ASSERT_TRUE(ParseFlatJsonObject(Bytes("{}"), object));
+  EXPECT_EQ(object.count, 0U);
+}
+
+TEST(WebJsonTest, ReaderRefusesWhatTheApiNeverSends) {
+  const char* refused[] = {
+      "",                                   // nothing
+      "[1]",                                // not an object
+      R"({"a":{"b":1}})",                   // nesting
+      R"({"a":[1]})",                       // arrays
+      R"({"a":1.5})",                       // fractions
+      R"({"a":1e3})",                       // exponents
+      R"({"a":01})",                        // leading zero
+      R"({"a":9007199254740993})",          // beyond 2^53
+      R"({"a":"x\"y"})",                    // escapes
+      R"({"a":1,"a":2})",                   // repeated key
+      R"({"a":1} x)",                       // trailing data
+      R"({"a":1,})",                        // trailing comma
+      R"({"a" 1})",                         // no colon
+      R"({"a":tru})",                       // broken literal
+      R"({"a":"unterminated)",              // no closing quote
+      R"({"1":1,"2":2,"3":3,"4":4,"5":5,"6":6,"7":7,"8":8,"9":9})",  // more than 8 members
+  };
+  for (const char* text : refused) {
+    JsonObject object;
+    EXPECT_FALSE(ParseFlatJsonObject(Bytes(text), object)) << text;
+  }
+  JsonObject object;
+  EXPECT_FALSE(ParseFlatJsonObject(Bytes("{\"a\":\"" + std::string(65, 'x') + "\"}"), object));
+  EXPECT_TRUE(ParseFlatJsonObject(Bytes("{\"a\":\"" + std::string(64, 'x') + "\"}"), object));
+}
+
+// --- HttpServer ---------------------------------------------------------------------------------------
+
+// Answers "/ok" with a JSON body, "/later" only after `release` is set, anything else 404.
+class ScriptedHandler final : public HttpHandler {
+ public:
+  HandlerResult Handle(HttpClientId client, const HttpRequest& request, HttpResponseWriter& response,
+                       hal::Micros) override {
+    ++calls;
+    if (request.path == "/later" && !release) return HandlerResult::kPending;
+    if (request.path == "/ok" || request.path == "/later") {
+      response.Start(HttpStatus::kOk);
+      response.BodyText(std::string(request.path.substr(1)) + std::to_string(client));
+      return HandlerResult::kDone;
+    }
+    if (request.path == "/big") {
+      response.Start(HttpStatus::kOk);
+      response.BodyText(std::string(kHttpResponseBufferBytes, 'x'));
+      return HandlerResult::kDone;
+    }
+    response.Start(HttpStatus::kNotFound);
+    return HandlerResult::kDone;
+  }
+  void OnClientClosed(HttpClientId client) override { closed_pending = client; }
+  hal::Micros NextDeadline() const override { return release ? 0 : hal::kNever; }
+
+  int calls = 0;
+  bool release = false;
+  int closed_pending = -1;
+};
+
+class WebHttpServerTest : public ::testing::Test {
+ protected:
+  // Everything the server has to send, as the transport would take it.
+  std::string Drain(HttpClientId id) {
+    std::string out;
+    for (auto chunk = server.PendingOutput(id); !chunk.empty(); chunk = server.PendingOutput(id)) {
+      out += Text(chunk);
+      server.ConsumeOutput(id, chunk.size(), now);
+    }
+    return out;
+  }
+  HttpClientId OpenClient() {
+    auto id = server.Open(now);
+    EXPECT_TRUE(id.ok());
+    return *id;
+  }
+
+  ScriptedHandler handler;
+  HttpServer server{handler};
+  hal::Micros now = 1'000'000;
+};
+
+TEST_F(WebHttpServerTest, KeepAliveServesPipelinedRequestsInOrder) {
+  const HttpClientId id = OpenClient();
+  const std::string two = "GET /ok HTTP/1.1\r\nHost: a\r\n\r\nGET /nope HTTP/1.1\r\nHost: a\r\n\r\n";
+  EXPECT_EQ(server.Receive(id, Bytes(two), now), two.size());
+  EXPECT_EQ(Drain(id),
+            "HTTP/1.1 200 OK\r\nContent-Length: 3\r\nConnection: keep-alive\r\n\r\nok0"
+            "HTTP/1.1 404 Not Found\r\nContent-Length: 0\r\nConnection: keep-alive\r\n\r\n");
+  EXPECT_FALSE(server.MustClose(id));
+  EXPECT_EQ(server.counters().requests, 2U);
+  EXPECT_EQ(server.counters().responses_by_class[2], 1U);
+  EXPECT_EQ(server.counters().responses_by_class[4], 1U);
+}
+
+TEST_F(WebHttpServerTest, ConnectionCloseClosesAfterTheAnswer) {
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\nConnection: close\r\n\r\n"), now);
+  EXPECT_FALSE(server.MustClose(id));  // the answer goes first
+  EXPECT_EQ(Drain(id), "HTTP/1.1 200 OK\r\nContent-Length: 3\r\nConnection: close\r\n\r\nok0");
+  EXPECT_TRUE(server.MustClose(id));
+}
+
+TEST_F(WebHttpServerTest, MalformedRequestGetsItsStatusAndCloses) {
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /ok HTTP/2.0\r\nHost: a\r\n\r\nGET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(Drain(id),
+            "HTTP/1.1 505 HTTP Version Not Supported\r\nContent-Type: application/json\r\nContent-Length: 38\r\n"
+            "Connection: close\r\n\r\n{\"error\":\"HTTP Version Not Supported\"}");
+  EXPECT_TRUE(server.MustClose(id));
+  EXPECT_EQ(handler.calls, 0);  // the request behind it is never served
+}
+
+TEST_F(WebHttpServerTest, PendingAnswerWaitsAndHoldsTheNextRequest) {
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /later HTTP/1.1\r\nHost: a\r\n\r\nGET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_TRUE(server.PendingOutput(id).empty());
+  EXPECT_EQ(server.NextDeadline(), hal::kNever);  // the handler's deadline (nothing due), no timers apply
+  server.Poll(now + 1);
+  EXPECT_TRUE(server.PendingOutput(id).empty());
+  handler.release = true;
+  EXPECT_EQ(server.NextDeadline(), 0);
+  server.Poll(now + 2);
+  EXPECT_EQ(Drain(id),
+            "HTTP/1.1 200 OK\r\nContent-Length: 6\r\nConnection: keep-alive\r\n\r\nlater0"
+            "HTTP/1.1 200 OK\r\nContent-Length: 3\r\nConnection: keep-alive\r\n\r\nok0");
+}
+
+TEST_F(WebHttpServerTest, ClosingWithAPendingRequestTellsTheHandler) {
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /later HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  server.Close(id);
+  EXPECT_EQ(handler.closed_pending, id);
+  EXPECT_FALSE(server.IsOpen(id));
+}
+
+TEST_F(WebHttpServerTest, AnAnswerTooLargeIs500AndCloses) {
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /big HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(Drain(id), "HTTP/1.1 500 Internal Server Error\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
+  EXPECT_TRUE(server.MustClose(id));
+  EXPECT_EQ(server.counters().overflows, 1U);
+}
+
+TEST_F(WebHttpServerTest, SlotsAreLimitedAndTheLongestIdleIsEvictable) {
+  std::array<HttpClientId, kMaxHttpClients> ids{};
+  for (std::size_t i = 0; i < kMaxHttpClients; ++i) {
+    now += 10;
+    ids[i] = OpenClient();
+  }
+  EXPECT_EQ(server.Open(now).status().code(), base::StatusCode::kResourceExhausted);
+  // Client 0 is busy with a partial request, client 1 is the longest idle one.
+  server.Receive(ids[0], Bytes("GET /ok HT"), now);
+  EXPECT_EQ(server.IdleClientToEvict(), std::optional<HttpClientId>(ids[1]));
+  server.Close(ids[1]);
+  EXPECT_EQ(*server.Open(now), ids[1]);
+  EXPECT_EQ(server.open_clients(), kMaxHttpClients);
+  EXPECT_EQ(Text(HttpServer::BusyResponse()),
+            "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nRetry-After: 1\r\n"
+            "Content-Length: 23\r\nConnection: close\r\n\r\n{\"error\":\"server busy\"}");
+}
+
+TEST_F(WebHttpServerTest, SlowRequestTimesOutWith408AndIdleConnectionsClose) {
+  const HttpClientId slow = OpenClient();
+  const HttpClientId idle = OpenClient();
+  server.Receive(slow, Bytes("GET / HTTP/1.1\r\n"), now);
+  EXPECT_EQ(server.NextDeadline(), now + kRequestTimeout);
+  server.Poll(now + kRequestTimeout - 1);
+  EXPECT_TRUE(server.PendingOutput(slow).empty());
+  server.Poll(now + kRequestTimeout);
+  EXPECT_EQ(Drain(slow),
+            "HTTP/1.1 408 Request Timeout\r\nContent-Type: application/json\r\nContent-Length: 27\r\n"
+            "Connection: close\r\n\r\n{\"error\":\"Request Timeout\"}");
+  EXPECT_TRUE(server.MustClose(slow));
+  server.Poll(now + kIdleTimeout - 1);
+  EXPECT_FALSE(server.MustClose(idle));
+  server.Poll(now + kIdleTimeout);
+  EXPECT_TRUE(server.MustClose(idle));
+  EXPECT_EQ(server.counters().request_timeouts, 1U);
+  EXPECT_EQ(server.counters().idle_closed, 1U);
+}
+
+TEST_F(WebHttpServerTest, WindowReopensWhileTheBufferCanStillTakeAWholeWindow) {
+  constexpr std::size_t kWindow = 2920;
+  const HttpClientId id = OpenClient();
+  // A POST with a 4000-byte body: larger than one window, so the window must reopen before it is served.
+  const std::string head = "POST /ok HTTP/1.1\r\nHost: a\r\nContent-Length: 4000\r\n\r\n";
+  const std::string body(4000, 'b');
+  const std::string request = head + body;
+  server.Receive(id, Bytes(std::string_view(request).substr(0, kWindow)), now);
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), kWindow);  // 8192 - 2920 free: a window still fits
+  server.Receive(id, Bytes(std::string_view(request).substr(kWindow)), now);
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), request.size() - kWindow);
+  EXPECT_EQ(Drain(id), "HTTP/1.1 200 OK\r\nContent-Length: 3\r\nConnection: keep-alive\r\n\r\nok0");
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), 0U);
+}
+
+TEST_F(WebHttpServerTest, WindowStaysShutWhenTheBufferIsNearlyFull) {
+  constexpr std::size_t kWindow = 2920;
+  const HttpClientId id = OpenClient();
+  // Held: a pending request, and pipelined bytes behind it.
+  const std::string later = "GET /later HTTP/1.1\r\nHost: a\r\nX: " + std::string(3000, 'y') + "\r\n\r\n";
+  server.Receive(id, Bytes(later), now);
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), later.size());
+  server.Receive(id, Bytes(std::string(2500, 'z')), now);
+  // 8192 - 5544 free = 2648 < a window: only what keeps a window's room may be released.
+  const std::size_t free_space = kHttpReceiveBufferBytes - later.size() - 2500;
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), 2500 - (kWindow - free_space));
+}
+
+}  // namespace
+}  // namespace web

@@ -1,0 +1,221 @@
+#include "web/http_server.h"
+
+#include <algorithm>
+#include <cstring>
+#include <string_view>
+
+namespace web {
+namespace {
+
+constexpr std::string_view kBusyResponse =
+    "HTTP/1.1 503 Service Unavailable\r\n"
+    "Content-Type: application/json\r\n"
+    "Retry-After: 1\r\n"
+    "Content-Length: 23\r\n"
+    "Connection: close\r\n"
+    "\r\n"
+    "{\"error\":\"server busy\"}";
+
+bool IsHead(const HttpRequest& request) { return request.method == "HEAD"; }
+
+}  // namespace
+
+std::span<const std::uint8_t> HttpServer::BusyResponse() {
+  return std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(kBusyResponse.data()),
+                                       kBusyResponse.size());
+}
+
+base::Result<HttpClientId> HttpServer::Open(hal::Micros now) {
+  for (std::size_t i = 0; i < kMaxHttpClients; ++i) {
+    Client& client = clients_[i];
+    if (client.open) continue;
+    client.open = true;
+    client.input_used = 0;
+    client.unreleased = 0;
+    client.head_left = {};
+    client.body_left = {};
+    client.request_bytes = 0;
+    client.request_active = false;
+    client.close_after_output = false;
+    client.must_close = false;
+    client.last_activity = now;
+    client.request_started = hal::kNever;
+    ++counters_.accepted;
+    return static_cast<HttpClientId>(i);
+  }
+  return base::ResourceExhausted();
+}
+
+std::optional<HttpClientId> HttpServer::IdleClientToEvict() const {
+  std::optional<HttpClientId> oldest;
+  for (std::size_t i = 0; i < kMaxHttpClients; ++i) {
+    const Client& client = clients_[i];
+    if (!client.open || client.must_close || client.input_used != 0 || client.request_active ||
+        OutputPending(client)) {
+      continue;
+    }
+    if (!oldest || client.last_activity < clients_[*oldest].last_activity) oldest = static_cast<HttpClientId>(i);
+  }
+  return oldest;
+}
+
+void HttpServer::Close(HttpClientId id) {
+  if (!IsOpen(id)) return;
+  Client& client = clients_[id];
+  if (client.request_active) handler_.OnClientClosed(id);
+  client.open = false;
+  client.request_active = false;
+  client.head_left = {};
+  client.body_left = {};
+}
+
+std::size_t HttpServer::open_clients() const {
+  return static_cast<std::size_t>(std::count_if(clients_.begin(), clients_.end(), [](const Client& c) { return c.open; }));
+}
+
+std::size_t HttpServer::Receive(HttpClientId id, std::span<const std::uint8_t> bytes, hal::Micros now) {
+  if (!IsOpen(id)) return 0;
+  Client& client = clients_[id];
+  const std::size_t count = std::min(bytes.size(), client.input.size() - client.input_used);
+  if (count == 0) return 0;
+  client.unreleased += count;
+  if (client.must_close || client.close_after_output) {
+    // The connection is ending: what arrives now is never served, only taken so TCP is not stalled.
+    return count;
+  }
+  std::memcpy(client.input.data() + client.input_used, bytes.data(), count);
+  if (client.input_used == 0 && !client.request_active) client.request_started = now;
+  client.input_used += count;
+  client.last_activity = now;
+  Serve(client, id, now);
+  return count;
+}
+
+void HttpServer::Poll(hal::Micros now) {
+  for (std::size_t i = 0; i < kMaxHttpClients; ++i) {
+    Client& client = clients_[i];
+    if (!client.open || client.must_close) continue;
+    const auto id = static_cast<HttpClientId>(i);
+    Serve(client, id, now);
+    if (OutputPending(client) || client.request_active || client.close_after_output) continue;
+    if (client.input_used != 0 && now - client.request_started >= kRequestTimeout) {
+      ++counters_.request_timeouts;
+      SendError(client, HttpStatus::kRequestTimeout);
+    } else if (client.input_used == 0 && now - client.last_activity >= kIdleTimeout) {
+      ++counters_.idle_closed;
+      client.must_close = true;
+    }
+  }
+}
+
+hal::Micros HttpServer::NextDeadline() const {
+  hal::Micros next = hal::kNever;
+  bool any_pending = false;
+  for (const Client& client : clients_) {
+    if (!client.open) continue;
+    if (client.must_close) return 0;
+    if (client.request_active) {
+      any_pending = true;
+      continue;
+    }
+    if (OutputPending(client) || client.close_after_output) continue;
+    next = std::min(next, client.input_used != 0 ? client.request_started + kRequestTimeout
+                                                 : client.last_activity + kIdleTimeout);
+  }
+  if (any_pending) next = std::min(next, handler_.NextDeadline());
+  return next;
+}
+
+std::span<const std::uint8_t> HttpServer::PendingOutput(HttpClientId id) const {
+  if (!IsOpen(id)) return {};
+  const Client& client = clients_[id];
+  return !client.head_left.empty() ? client.head_left : client.body_left;
+}
+
+void HttpServer::ConsumeOutput(HttpClientId id, std::size_t count, hal::Micros now) {
+  if (!IsOpen(id)) return;
+  Client& client = clients_[id];
+  client.last_activity = now;
+  const std::size_t from_head = std::min(count, client.head_left.size());
+  client.head_left = client.head_left.subspan(from_head);
+  count -= from_head;
+  client.body_left = client.body_left.subspan(std::min(count, client.body_left.size()));
+  if (OutputPending(client)) return;
+  if (client.close_after_output) {
+    client.must_close = true;
+    return;
+  }
+  // A pipelined request may be waiting behind the answer just sent.
+  if (client.input_used != 0) client.request_started = now;
+  Serve(client, id, now);
+}
+
+std::size_t HttpServer::TakeReleasedInput(HttpClientId id, std::size_t window) {
+  if (!IsOpen(id)) return 0;
+  Client& client = clients_[id];
+  // After releasing r, the peer may send window - (unreleased - r) more bytes; they must fit the free space.
+  const std::size_t free_space = client.input.size() - client.input_used;
+  if (free_space + client.unreleased <= window) return 0;
+  const std::size_t released = std::min(client.unreleased, free_space + client.unreleased - window);
+  client.unreleased -= released;
+  return released;
+}
+
+void HttpServer::Serve(Client& client, HttpClientId id, hal::Micros now) {
+  if (client.must_close || client.close_after_output || OutputPending(client)) return;
+  if (!client.request_active) {
+    if (client.input_used == 0) return;
+    const ParseResult parsed =
+        ParseHttpRequest(std::span<const std::uint8_t>(client.input.data(), client.input_used), client.request);
+    if (parsed.state == ParseState::kIncomplete) return;
+    if (parsed.state == ParseState::kError) {
+      ++counters_.parse_errors;
+      SendError(client, parsed.error);
+      return;
+    }
+    ++counters_.requests;
+    client.request_active = true;
+    client.request_bytes = parsed.consumed;
+  }
+  RunHandler(client, id, now);
+}
+
+void HttpServer::RunHandler(Client& client, HttpClientId id, hal::Micros now) {
+  HttpResponseWriter writer(client.output);
+  if (handler_.Handle(id, client.request, writer, now) == HandlerResult::kPending) return;
+  const bool keep_alive = client.request.keep_alive;
+  writer.Finish(IsHead(client.request), keep_alive);
+  if (writer.overflowed()) ++counters_.overflows;
+  CountResponse(writer.status());
+  client.head_left = writer.head();
+  client.body_left = writer.external_body();
+  client.close_after_output = !keep_alive || writer.overflowed();
+  // The request is answered: its bytes leave the buffer (the answer no longer refers to them).
+  client.request_active = false;
+  std::memmove(client.input.data(), client.input.data() + client.request_bytes, client.input_used - client.request_bytes);
+  client.input_used -= client.request_bytes;
+  client.request_bytes = 0;
+}
+
+void HttpServer::SendError(Client& client, HttpStatus status) {
+  HttpResponseWriter writer(client.output);
+  writer.Start(status);
+  writer.Header("Content-Type", "application/json");
+  writer.BodyText("{\"error\":\"");
+  writer.BodyText(ReasonPhrase(status));
+  writer.BodyText("\"}");
+  writer.Finish(false, false);
+  CountResponse(writer.status());
+  client.head_left = writer.head();
+  client.body_left = {};
+  client.close_after_output = true;
+  // Nothing more is parsed on this connection.
+  client.input_used = 0;
+}
+
+void HttpServer::CountResponse(HttpStatus status) {
+  const std::size_t klass = static_cast<std::size_t>(status) / 100;
+  if (klass < counters_.responses_by_class.size()) ++counters_.responses_by_class[klass];
+}
+
+}  // namespace web

@@ -1,0 +1,135 @@
+// The web server's connection core (docs/web.md "Connections"): up to kMaxHttpClients connections, each
+// with its receive buffer and response buffer, requests parsed by ParseHttpRequest and handed to an
+// HttpHandler one at a time per connection (pipelined requests wait their turn), answers taken out by
+// the transport (firmware/web_service binds this to lwIP). Pure: bytes in, bytes out, time injected.
+//
+// - A handler may answer later (kPending): the server calls it again with the same request on each Poll
+//   until it is done (the drive's registers are read over the serial link). The request stays in the
+//   receive buffer meanwhile, so the views in HttpRequest remain valid.
+// - Keep-alive: after an answer the next request on the connection is served. A malformed request gets
+//   its 4xx and the connection closes after it (its framing can no longer be trusted).
+// - Slots: when a connection arrives and every slot is taken, the transport may close the connection that
+//   has been idle longest between requests (IdleClientToEvict: a browser keeps idle connections open, and
+//   a server may close an idle connection at any time, RFC 9112 §9.5); when none is idle it answers
+//   BusyResponse() and closes.
+// - Timers: a request must arrive whole within kRequestTimeout of its first byte (408 otherwise: a client
+//   sending one byte a second cannot hold a slot); an idle connection closes after kIdleTimeout.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "base/status.h"
+#include "hal/clock.h"
+#include "web/http_request.h"
+#include "web/http_response.h"
+
+namespace web {
+
+inline constexpr std::size_t kMaxHttpClients = 4;
+// A whole request (headers and body at their limits) fits: nothing is ever refused back to TCP.
+inline constexpr std::size_t kHttpReceiveBufferBytes = kMaxHeaderBlock + kMaxBody;
+// Headers and an in-buffer body (JSON answers are at most a few KiB; assets are sent from where they are).
+inline constexpr std::size_t kHttpResponseBufferBytes = 4096;
+inline constexpr hal::Micros kRequestTimeout = 10 * hal::kMicrosPerSecond;
+inline constexpr hal::Micros kIdleTimeout = 60 * hal::kMicrosPerSecond;
+
+using HttpClientId = std::uint8_t;
+
+enum class HandlerResult : std::uint8_t { kDone, kPending };
+
+class HttpHandler {
+ public:
+  virtual ~HttpHandler() = default;
+  // Writes the answer to `request` (Start, headers, body; the server adds Content-Length and Connection
+  // and finishes it), or returns kPending and is called again later with the same request. An external
+  // body must stay valid for as long as the program runs (embedded assets).
+  virtual HandlerResult Handle(HttpClientId client, const HttpRequest& request, HttpResponseWriter& response,
+                               hal::Micros now) = 0;
+  // The connection is gone: forget what was pending for it.
+  virtual void OnClientClosed(HttpClientId client) = 0;
+  // When a pending request wants to be called again (hal::kNever: only when something else happens).
+  virtual hal::Micros NextDeadline() const = 0;
+};
+
+struct HttpServerCounters {
+  std::uint32_t accepted = 0;
+  std::uint32_t requests = 0;         // requests parsed whole and handed to the handler
+  std::uint32_t parse_errors = 0;     // answered 4xx/5xx by the parser's verdict
+  std::uint32_t request_timeouts = 0; // 408: a request did not arrive whole in time
+  std::uint32_t idle_closed = 0;      // closed after kIdleTimeout without a request
+  std::uint32_t overflows = 0;        // an answer too large for the response buffer (500 sent)
+  std::array<std::uint32_t, 6> responses_by_class{};  // [2] = 2xx ... [5] = 5xx
+};
+
+class HttpServer {
+ public:
+  explicit HttpServer(HttpHandler& handler) : handler_(handler) {}
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // A new connection. kResourceExhausted: every slot is taken.
+  base::Result<HttpClientId> Open(hal::Micros now);
+  // The longest-idle connection with nothing received, pending or unsent, if any.
+  std::optional<HttpClientId> IdleClientToEvict() const;
+  // Forgets the connection (the transport closes it).
+  void Close(HttpClientId client);
+  bool IsOpen(HttpClientId client) const { return client < kMaxHttpClients && clients_[client].open; }
+
+  // Takes received bytes (all of them while the transport's window is no larger than the buffer) and
+  // serves what has become complete. Returns the count taken.
+  std::size_t Receive(HttpClientId client, std::span<const std::uint8_t> bytes, hal::Micros now);
+  // Calls pending handlers again, applies the timeouts.
+  void Poll(hal::Micros now);
+  hal::Micros NextDeadline() const;
+
+  // The next bytes to send, and the transport's report that `count` of them went to TCP (which may let
+  // the next pipelined request be served).
+  std::span<const std::uint8_t> PendingOutput(HttpClientId client) const;
+  void ConsumeOutput(HttpClientId client, std::size_t count, hal::Micros now);
+  // How far the transport may reopen its receive window now, given its full window size: received bytes
+  // not yet reported, as far as the buffer's free space still covers a whole window after them (a request
+  // larger than one window arrives while the earlier part waits in the buffer).
+  std::size_t TakeReleasedInput(HttpClientId client, std::size_t window);
+  // The connection must be closed now (after a closing answer was sent, or a timeout).
+  bool MustClose(HttpClientId client) const { return IsOpen(client) && clients_[client].must_close; }
+
+  // What a connection beyond every slot is told before it is closed.
+  static std::span<const std::uint8_t> BusyResponse();
+
+  const HttpServerCounters& counters() const { return counters_; }
+  std::size_t open_clients() const;
+
+ private:
+  struct Client {
+    bool open = false;
+    std::array<std::uint8_t, kHttpReceiveBufferBytes> input{};
+    std::size_t input_used = 0;
+    std::size_t unreleased = 0;  // taken by Receive, not yet handed back to the transport's window
+    std::array<std::uint8_t, kHttpResponseBufferBytes> output{};
+    std::span<const std::uint8_t> head_left;
+    std::span<const std::uint8_t> body_left;
+    HttpRequest request;
+    std::size_t request_bytes = 0;  // the active request's length in `input`
+    bool request_active = false;    // parsed, the handler has not finished it
+    bool close_after_output = false;
+    bool must_close = false;
+    hal::Micros last_activity = 0;  // last byte received or sent
+    hal::Micros request_started = hal::kNever;  // first byte of an incomplete request
+  };
+
+  void Serve(Client& client, HttpClientId id, hal::Micros now);
+  void RunHandler(Client& client, HttpClientId id, hal::Micros now);
+  void SendError(Client& client, HttpStatus status);
+  void CountResponse(HttpStatus status);
+  bool OutputPending(const Client& client) const { return !client.head_left.empty() || !client.body_left.empty(); }
+
+  HttpHandler& handler_;
+  std::array<Client, kMaxHttpClients> clients_{};
+  HttpServerCounters counters_;
+};
+
+}  // namespace web
