@@ -92,6 +92,8 @@
     optionCache.set(r.number, map);
     return map;
   }
+  // The function text without a scanner menu's list of choices (those show as names).
+  const shortFn = (r) => r.fn.replace(/\s*\(menu:[^)]*\)/, '');
   // A scanner menu entry ("FA06", "acc") with the register it names: "FA06 fa06", "acc (0009)".
   function menuTarget(name) {
     if (REGS.has(name)) return REGS.get(name);
@@ -329,7 +331,7 @@
     const { input, parse } = valueInput(r, current);
     openDialog({
       title: `${r.title} (${r.number})`,
-      info: `${r.fn}. Range ${fmtRange(r)}` + (current != null ? `; now ${fmtValue(r, current)}.` : '.') +
+      info: `${shortFn(r)}. Range ${fmtRange(r)}` + (current != null ? `; now ${fmtValue(r, current)}.` : '.') +
         (r.afterReset ? ' Takes effect after the communication reset.' : ''),
       fields: [field('New value' + (unitOf(r).sym ? ` (${unitOf(r).sym})` : ''), input)],
       prepare: () => [[r.number, parse()]],
@@ -586,7 +588,7 @@
       const editable = r.access === 'rw';
       body.append(el('tr', { id: 'par-' + r.number },
         el('td', { class: 'mono', text: r.title }), el('td', { class: 'mono', text: r.number }),
-        el('td', { class: 'fn', text: r.fn.replace(/\s*\(menu:[^)]*\)/, ''), title: r.fn }), el('td', { id: `par-${r.number}-value`, class: 'num', text: '...' }),
+        el('td', { class: 'fn', text: shortFn(r), title: r.fn }), el('td', { id: `par-${r.number}-value`, class: 'num', text: '...' }),
         el('td', { class: 'range', text: r.unit === 'char' ? 'ASCII' : fmtRange(r) }),
         el('td', {}, editable
           ? el('button', { id: `par-${r.number}-edit`, type: 'button', class: 'small', text: 'Edit',
