@@ -17,7 +17,7 @@ SHOTS=${WEB_SCREENSHOTS:-$ROOT/build/web-screenshots}
 command -v node >/dev/null || fail "node is not installed (tools/setup)"
 [ -x "${CHROMIUM:-/usr/bin/chromium}" ] || fail "no ${CHROMIUM:-/usr/bin/chromium} (tools/setup installs Debian's chromium)"
 [ -d "$ROOT/node_modules/playwright-core" ] || fail "no node_modules/playwright-core (npm ci, or tools/setup)"
-rm -rf "$SHOTS"
+rm -f "$SHOTS"/*.png
 mkdir -p "$SHOTS"
 
 if [ "${1:-}" = "--mock" ]; then
