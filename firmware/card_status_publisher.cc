@@ -66,6 +66,12 @@ CardStatusPublisher::CardStatusPublisher(drive_link::RegisterProxy& proxy, modbu
   board_.firmware_version = firmware_version;
 }
 
+base::Status CardStatusPublisher::AddFrontEnd(ConfigurableService& front_end) {
+  if (front_end_count_ == front_ends_.size()) return base::ResourceExhausted();
+  front_ends_[front_end_count_++] = &front_end;
+  return base::OkStatus();
+}
+
 void CardStatusPublisher::ConfigureFrontEnds(bool only_pending) {
   for (std::size_t i = 0; i < front_end_count_; ++i) {
     if (only_pending && !pending_[i]) continue;

@@ -45,7 +45,7 @@ class CardStatusPublisher final : public Service,
  public:
   static constexpr hal::Micros kPublishInterval = 100 * hal::kMicrosPerMilli;
 
-  static constexpr std::size_t kMaxFrontEnds = 6;
+  static constexpr std::size_t kMaxFrontEnds = 8;
 
   // At most kMaxFrontEnds front ends (more are ignored); `identity_sink` may be null.
   CardStatusPublisher(drive_link::RegisterProxy& proxy, modbus::Server& modbus_server,
@@ -56,6 +56,10 @@ class CardStatusPublisher final : public Service,
   hal::Micros NextDeadline() const override { return next_publish_; }
 
   void OnConfigLoaded(const drive_link::ParsedConfig& parsed) override;
+
+  // One more front end, for one built after the publisher (the web server, whose pages show the
+  // publisher's data). kResourceExhausted beyond kMaxFrontEnds.
+  base::Status AddFrontEnd(ConfigurableService& front_end);
 
   const modbus::OptionBoardData& board_data() const { return board_; }
 

@@ -5,6 +5,8 @@ namespace firmware {
 base::Result<tcp_pcb*> OpenTcpListener(std::uint16_t port, void* arg, tcp_accept_fn accept) {
   tcp_pcb* pcb = tcp_new_ip_type(IPADDR_TYPE_V4);
   if (pcb == nullptr) return base::ResourceExhausted();
+  // Connections of an earlier listener on this port may still be in TIME_WAIT (lwipopts.h SO_REUSE).
+  ip_set_option(pcb, SOF_REUSEADDR);
   if (tcp_bind(pcb, IP4_ADDR_ANY, port) != ERR_OK) {
     tcp_close(pcb);
     return base::FailedPrecondition();

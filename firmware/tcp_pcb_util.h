@@ -21,8 +21,9 @@ struct TcpCallbacks {
   tcp_poll_fn poll = nullptr;
 };
 
-// Listens on `port` (any address) and hands `arg` to `accept`. kResourceExhausted: no PCB;
-// kFailedPrecondition: the port is taken. Nothing is left allocated on failure.
+// Listens on `port` (any address) and hands `arg` to `accept`, with SOF_REUSEADDR (connections of an
+// earlier listener on the port may be in TIME_WAIT). kResourceExhausted: no PCB; kFailedPrecondition:
+// the port is taken. Nothing is left allocated on failure.
 base::Result<tcp_pcb*> OpenTcpListener(std::uint16_t port, void* arg, tcp_accept_fn accept);
 // Closes a listener (always freed) and sets it to null; no-op on null.
 void CloseTcpListener(tcp_pcb*& listener);

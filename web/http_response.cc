@@ -17,6 +17,7 @@ const char* ReasonPhrase(HttpStatus status) {
     case HttpStatus::kForbidden: return "Forbidden";
     case HttpStatus::kNotFound: return "Not Found";
     case HttpStatus::kMethodNotAllowed: return "Method Not Allowed";
+    case HttpStatus::kNotAcceptable: return "Not Acceptable";
     case HttpStatus::kRequestTimeout: return "Request Timeout";
     case HttpStatus::kConflict: return "Conflict";
     case HttpStatus::kLengthRequired: return "Length Required";

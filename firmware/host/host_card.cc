@@ -32,6 +32,13 @@
 #include "slirp_frame_port.h"
 #include "socket_serial_port.h"
 #include "tap_frame_port.h"
+#include "led_mirror.h"
+#include "web/access_control.h"
+#include "web/http_server.h"
+#include "web/password_store.h"
+#include "web_application.h"
+#include "web_card_status.h"
+#include "web_service.h"
 
 namespace host {
 namespace {
@@ -39,6 +46,8 @@ namespace {
 // The card's own NV records. The MAC is factory data: a real card has it burnt in; the host card
 // makes up a locally administered one on first start and keeps it in the state dir.
 constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
+// The web server's read and write passwords, as salted hashes (docs/web.md "Passwords and sessions").
+constexpr hal::NvRecordId kNvWebPasswords = 0x0020;
 
 // The card's firmware version as FC 43 and unit 251 show it ("0106": V1.06, the version of the card
 // this one imitates, seed 000 §8.8).
@@ -181,7 +190,8 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
     port = capture.get();
   }
 
-  hal::host::LoggingLeds leds(clock, hal::host::LoggingLeds::FileSink(stderr));
+  hal::host::LoggingLeds logged_leds(clock, hal::host::LoggingLeds::FileSink(stderr));
+  firmware::LedMirror leds(logged_leds);  // what the web page shows
   ResetRequest reset;
 
   firmware::BindLwipPlatform(clock, random);
@@ -216,11 +226,27 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
     return CardExit::kFailed;
   }
 
-  // Every configuration read from the inverter goes to these (c500 picks the protocol whose ports open).
+  // The web server on port 80 (docs/web.md), open while c554 = 1, whatever the protocol. Its passwords
+  // are the card's own (NV store), not the inverter's.
+  web::PasswordStore passwords(*store.value(), kNvWebPasswords, random);
+  if (const auto loaded = passwords.Load(); !loaded.ok()) {
+    std::fprintf(stderr, "web: cannot store the default passwords (%s); they are in force anyway\n",
+                 base::StatusName(loaded.status()));
+  }
+  web::AccessControl access(passwords, random);
+
+  // Every configuration read from the inverter goes to these (c500 picks the protocol whose ports open,
+  // c554 the web server's).
   std::array<firmware::ConfigurableService*, 6> front_ends{&modbus_service};
   std::copy(eip_card.front_ends().begin(), eip_card.front_ends().end(), front_ends.begin() + 1);
   firmware::CardStatusPublisher publisher(proxy, modbus_server, front_ends, netif, kFirmwareVersion,
                                           &eip_card.identity_sink());
+  firmware::CardWebStatus web_status({proxy, publisher, netif, leds, eip_card.connections()});
+  firmware::WebApplication web_application({access, proxy, proxy, proxy, web_status});
+  web::HttpServer http_server(web_application);
+  firmware::WebService web_service(http_server, clock, {.port = 80, .keepalive = options.tcp_keepalive});
+  web_status.SetWebCounters(http_server, web_service);
+  publisher.AddFrontEnd(web_service).IgnoreError();
   proxy.SetConfigListener(&publisher);
   if (base::Status started = proxy.Start(clock.NowMicros()); !started.ok()) {
     error = std::string("drive link: ") + base::StatusName(started);
@@ -230,13 +256,15 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   loop.AddService(modbus_service).IgnoreError();
   for (firmware::Service* service : eip_card.services()) loop.AddService(*service).IgnoreError();
   loop.AddService(parameter_writer).IgnoreError();
+  loop.AddService(web_application).IgnoreError();
+  loop.AddService(web_service).IgnoreError();
   loop.AddService(publisher).IgnoreError();
 
   SignalSource signals;
   waiter.Register(signals);
 
   const DriveReport drive_report{proxy, modbus_server, modbus_service, eip_card, parameter_writer};
-  CardReport report{netif, loop, leds, waiter, &drive_report};
+  CardReport report{netif, loop, logged_leds, waiter, &drive_report};
   std::unique_ptr<ControlServer> control;
   if (!options.sim_control_path.empty()) {
     control = std::make_unique<ControlServer>(

@@ -338,6 +338,12 @@
  * (ip_set_option(pcb, SOF_KEEPALIVE)). */
 #define LWIP_TCP_KEEPALIVE 1
 
+/* SO_REUSE: 1 = SOF_REUSEADDR exists. The firmware sets it on its listeners (firmware/tcp_pcb_util.cc):
+ * a port closed by the configuration (c500, c554) and opened again after a communication reset must
+ * not be refused with ERR_USE for 2*TCP_MSL because connections the card closed are in TIME_WAIT on it
+ * (seen with port 80: c554 = 0, f899, c554 = 1, f899). */
+#define SO_REUSE 1
+
 /* TCP_KEEPIDLE_DEFAULT / TCP_KEEPINTVL_DEFAULT / TCP_KEEPCNT_DEFAULT: defaults for PCBs with
  * SOF_KEEPALIVE: first probe after 60 s idle, then every 10 s, give up after 6 unanswered (a dead
  * peer is found in about 2 minutes instead of lwIP's 2 hours + 11 minutes). A PLC that was

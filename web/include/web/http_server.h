@@ -90,6 +90,11 @@ class HttpServer {
   // the next pipelined request be served).
   std::span<const std::uint8_t> PendingOutput(HttpClientId client) const;
   void ConsumeOutput(HttpClientId client, std::size_t count, hal::Micros now);
+  // PendingOutput() is an external body (valid for the program's life: the transport may reference it
+  // instead of copying), not the response buffer, which the next answer reuses.
+  bool PendingOutputIsStatic(HttpClientId client) const {
+    return IsOpen(client) && clients_[client].head_left.empty() && !clients_[client].body_left.empty();
+  }
   // How far the transport may reopen its receive window now, given its full window size: received bytes
   // not yet reported, as far as the buffer's free space still covers a whole window after them (a request
   // larger than one window arrives while the earlier part waits in the buffer).

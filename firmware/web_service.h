@@ -1,0 +1,94 @@
+// The web server (web::HttpServer) bound to lwIP's raw TCP API: a listener on port 80, one PCB per
+// client, bytes between the PCBs and the server. docs/web.md "Connections" has the rules.
+//
+// - Listens while c554 = 1 (web server enabled), whatever c500 says; c554 = 0 closes the port and resets
+//   every connection (Configure).
+// - At most web::kMaxHttpClients connections. One more is given the slot of the connection idle longest
+//   between requests (closed with FIN; browsers keep idle connections and reopen them at will); when every
+//   connection is busy it gets web::HttpServer::BusyResponse() (503, Retry-After: 1) and FIN.
+// - Received pbufs are copied into the server and freed at once; the window reopens as the server's
+//   buffer allows (HttpServer::TakeReleasedInput), so a request larger than one window still arrives.
+// - Answers: the head (status line, headers, JSON body) is copied into lwIP; an embedded asset's body is
+//   referenced, not copied (it lives in flash for the program's life). At most TCP_SND_BUF bytes wait
+//   for acknowledgement per connection (lwipopts.h sizes the heap and pbuf pools for 4 such clients).
+// - Keepalive as the other services (a vanished browser frees its slot).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "base/status.h"
+#include "configurable_service.h"
+#include "drive_link/card_config.h"
+#include "event_loop.h"
+#include "hal/clock.h"
+#include "lwip/tcp.h"
+#include "tcp_keepalive.h"
+#include "web/http_server.h"
+
+namespace firmware {
+
+struct WebServiceOptions {
+  std::uint16_t port = 80;
+  TcpKeepalive keepalive;
+};
+
+struct WebServiceCounters {
+  std::uint32_t accepted = 0;
+  std::uint32_t evicted = 0;         // idle connections closed to make room
+  std::uint32_t refused_busy = 0;    // 503 and closed: every connection busy
+  std::uint32_t closed_by_peer = 0;
+  std::uint32_t closed_by_card = 0;  // Connection: close, an error answer, a timeout
+  std::uint32_t lost = 0;            // lwIP dropped the connection (RST, keepalive, retransmissions)
+  std::uint32_t write_errors = 0;    // tcp_write refused (no memory): retried later
+};
+
+class WebService final : public Service, public ConfigurableService {
+ public:
+  WebService(web::HttpServer& server, const hal::Clock& clock, const WebServiceOptions& options = {})
+      : server_(server), clock_(clock), options_(options) {}
+  ~WebService() override { Stop(); }
+  WebService(const WebService&) = delete;
+  WebService& operator=(const WebService&) = delete;
+
+  // Opens (c554 = 1) or closes (c554 = 0) the port.
+  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Start();
+  void Stop();
+  bool listening() const { return listener_ != nullptr; }
+
+  void Poll(hal::Micros now) override;
+  hal::Micros NextDeadline() const override;
+
+  const WebServiceCounters& counters() const { return counters_; }
+
+ private:
+  struct Client {
+    WebService* service = nullptr;
+    tcp_pcb* pcb = nullptr;
+    web::HttpClientId id = 0;
+    bool stalled = false;  // wait for an acknowledgement or lwIP's poll before writing again
+  };
+
+  static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
+  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err);
+  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length);
+  static err_t OnPoll(void* arg, tcp_pcb* pcb);
+  static void OnError(void* arg, err_t err);
+
+  err_t Accept(tcp_pcb* pcb);
+  err_t RefuseBusy(tcp_pcb* pcb);
+  err_t Receive(Client& client, pbuf* p);
+  err_t Flush(Client& client);
+  err_t Close(Client& client);
+  void Abort(Client& client);
+
+  web::HttpServer& server_;
+  const hal::Clock& clock_;
+  WebServiceOptions options_;
+  tcp_pcb* listener_ = nullptr;
+  std::array<Client, web::kMaxHttpClients> clients_{};
+  WebServiceCounters counters_;
+};
+
+}  // namespace firmware
