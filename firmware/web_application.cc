@@ -182,7 +182,7 @@ HandlerResult WebApplication::HandleAsset(const Call& call) {
   response.Header("Content-Type", asset->content_type);
   response.Header("Content-Encoding", "gzip");
   if (asset->content_type.substr(0, 9) == "text/html") {
-    response.Header("Content-Security-Policy", "default-src 'self'; frame-ancestors 'none'; form-action 'self'");
+    response.Header("Content-Security-Policy", "default-src 'self'; img-src 'self' data:; frame-ancestors 'none'; form-action 'self'");
   }
   response.ExternalBody(asset->gzip);
   return HandlerResult::kDone;

@@ -1,6 +1,6 @@
 #!/usr/bin/env node
 // The card's page in a real browser (Debian's chromium driven by playwright-core), against the card's web
-// server or the mock (tools/web/mock_api.js): login, the drive monitor following a running drive, a
+// server: login, the drive monitor following a running drive, a
 // parameter change with the write password checked in the inverter, a wrong write password and a
 // refusal shown, every menu visited with a screenshot, and the passwords changed in Administration.
 //
@@ -174,7 +174,9 @@ async function main() {
   page.on('console', (m) => { if (m.type() === 'error' && !/^Failed to load resource/.test(m.text())) pageErrors.push(m.text()); });
   page.on('response', (r) => { if (!new URL(r.url()).pathname.startsWith('/api/') && r.status() >= 400) pageErrors.push(`${r.url()}: ${r.status()}`); });
   const external = [];
-  page.on('request', (r) => { if (!r.url().startsWith(BASE + '/')) external.push(r.url()); });
+  // By origin: the browser drops a default port from the URLs it requests (http://host:80 -> http://host).
+  const origin = new URL(BASE).origin;
+  page.on('request', (r) => { if (new URL(r.url()).origin !== origin) external.push(r.url()); });
 
   // Login: a wrong password is refused, the right one opens the drive monitor.
   const res = await page.goto(BASE + '/').catch((e) => fail(`cannot load ${BASE}/: ${e.message}`));

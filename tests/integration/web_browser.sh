@@ -6,7 +6,6 @@
 # with a screenshot, the passwords changed.
 #
 #   tests/integration/web_browser.sh           the host firmware (FIRMWARE=..., default build/host)
-#   tests/integration/web_browser.sh --mock    tools/web/mock_api.js instead (a dev aid; no firmware)
 #
 # Screenshots go to WEB_SCREENSHOTS (default build/web-screenshots). c523 = 0: the one-shot Modbus
 # writes that start the drive must not count as a lost master 2 s later (docs/modbus.md "Loss
@@ -20,18 +19,6 @@ command -v node >/dev/null || fail "node is not installed (tools/setup)"
 rm -f "$SHOTS"/*.png
 mkdir -p "$SHOTS"
 
-if [ "${1:-}" = "--mock" ]; then
-  WORK=$(mktemp -d /tmp/ipe-web.XXXXXX)
-  node "$ROOT/tools/web/mock_api.js" --port=0 >"$WORK/mock.log" 2>&1 &
-  MOCK_PID=$!
-  trap 'kill "$MOCK_PID" 2>/dev/null; rm -rf "$WORK"' EXIT
-  wait_for 10 grep -q '^ready ' "$WORK/mock.log" || { cat "$WORK/mock.log" >&2; fail "the mock did not start"; }
-  http=$(sed -n 's/^ready .*http=\([^ ]*\).*/\1/p' "$WORK/mock.log")
-  node "$ROOT/tests/browser/web_ui.js" --url="http://$http" --screenshots="$SHOTS" --drive=api \
-    || fail "web_ui.js against the mock at http://$http (screenshots in $SHOTS)"
-  pass "the page against the mock (screenshots in $SHOTS)"
-  exit 0
-fi
 
 start_loopback_card 127.0.0.31 --param c523=0
 http=$(ready_field http)
