@@ -117,22 +117,9 @@ err_t EipService::Accept(tcp_pcb* pcb) {
   connection.held_reply_size = 0;
   connection.close_after_reply = false;
   connection.pending = false;
-  AttachTcpConnection(pcb, &connection,
-                      {&EipService::OnRecv, &EipService::OnSent, &EipService::OnError, &EipService::OnPoll},
-                      options_.keepalive);
+  AttachTcpConnection(pcb, &connection, TcpSlotCallbacks<Connection>::kCallbacks, options_.keepalive);
   ++counters_.accepted;
   return ERR_OK;
-}
-
-// tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
-err_t EipService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
-  auto* connection = static_cast<Connection*>(arg);
-  if (connection == nullptr || connection->pcb != pcb) return DiscardTcpData(pcb, p);
-  if (err != ERR_OK && p != nullptr) {
-    pbuf_free(p);
-    return ERR_OK;
-  }
-  return connection->service->Receive(*connection, p);
 }
 
 err_t EipService::Receive(Connection& connection, pbuf* p) {
@@ -226,28 +213,9 @@ err_t EipService::Serve(Connection& connection) {
   return ERR_OK;
 }
 
-err_t EipService::OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
-  static_cast<void>(length);
-  auto* connection = static_cast<Connection*>(arg);
-  if (connection == nullptr || connection->pcb != pcb) return ERR_OK;
-  return connection->service->Serve(*connection);
-}
-
-err_t EipService::OnPoll(void* arg, tcp_pcb* pcb) {
-  auto* connection = static_cast<Connection*>(arg);
-  if (connection == nullptr || connection->pcb != pcb) return ERR_OK;
-  return connection->service->Serve(*connection);
-}
-
-// tcp_err_fn: the PCB is already freed; only our state is left.
-void EipService::OnError(void* arg, err_t err) {
-  static_cast<void>(err);
-  auto* connection = static_cast<Connection*>(arg);
-  if (connection == nullptr || connection->pcb == nullptr) return;
-  EipService& service = *connection->service;
-  ++service.counters_.lost;
-  connection->pcb = nullptr;
-  service.server_.CloseTcpConnection(connection->id);
+void EipService::Lost(Connection& connection) {
+  ++counters_.lost;
+  server_.CloseTcpConnection(connection.id);
 }
 
 err_t EipService::Close(Connection& connection) {

@@ -31,6 +31,7 @@
 #include "lwip/udp.h"
 #include "lwipopts.h"
 #include "tcp_keepalive.h"
+#include "tcp_pcb_util.h"
 
 namespace firmware {
 
@@ -91,14 +92,13 @@ class EipService final : public Service, public ConfigurableService {
   };
 
   static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
-  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err);
-  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length);
-  static err_t OnPoll(void* arg, tcp_pcb* pcb);
-  static void OnError(void* arg, err_t err);
+  friend struct TcpSlotCallbacks<Connection>;
   static void OnUdp(void* arg, udp_pcb* pcb, pbuf* p, const ip_addr_t* address, u16_t port);
 
   err_t Accept(tcp_pcb* pcb);
   err_t Receive(Connection& connection, pbuf* p);
+  err_t Resume(Connection& connection) { return Serve(connection); }
+  void Lost(Connection& connection);
   // Feeds buffered input to the core while replies fit, writes them, closes when the core says so.
   // Returns ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
   err_t Serve(Connection& connection);

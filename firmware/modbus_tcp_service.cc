@@ -79,26 +79,12 @@ err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
   }
   Client& client = clients_[*id];
   client = Client{this, pcb, *id, false};
-  AttachTcpConnection(pcb, &client,
-                      {&ModbusTcpService::OnRecv, &ModbusTcpService::OnSent, &ModbusTcpService::OnError,
-                       &ModbusTcpService::OnPoll},
-                      options_.keepalive);
+  AttachTcpConnection(pcb, &client, TcpSlotCallbacks<Client>::kCallbacks, options_.keepalive);
   ++counters_.accepted;
   return ERR_OK;
 }
 
-// tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
-// A NULL pbuf: the remote host closed the connection.
-err_t ModbusTcpService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) return DiscardTcpData(pcb, p);
-  if (err != ERR_OK && p != nullptr) {
-    pbuf_free(p);
-    return ERR_OK;
-  }
-  return client->service->Receive(*client, p);
-}
-
+// A null pbuf: the remote host closed the connection.
 err_t ModbusTcpService::Receive(Client& client, pbuf* p) {
   if (p == nullptr) {
     // The client is done. Requests it left unanswered are dropped with the connection.
@@ -120,30 +106,14 @@ err_t ModbusTcpService::Receive(Client& client, pbuf* p) {
   return Flush(client);
 }
 
-err_t ModbusTcpService::OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
-  static_cast<void>(length);
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) return ERR_OK;
-  client->stalled = false;
-  return client->service->Flush(*client);
+err_t ModbusTcpService::Resume(Client& client) {
+  client.stalled = false;
+  return Flush(client);
 }
 
-err_t ModbusTcpService::OnPoll(void* arg, tcp_pcb* pcb) {
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) return ERR_OK;
-  client->stalled = false;
-  return client->service->Flush(*client);
-}
-
-// tcp_err_fn: the PCB is already freed; only our state is.
-void ModbusTcpService::OnError(void* arg, err_t err) {
-  static_cast<void>(err);
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb == nullptr) return;
-  ModbusTcpService& service = *client->service;
-  ++service.counters_.lost;
-  client->pcb = nullptr;
-  service.server_.Close(client->id);
+void ModbusTcpService::Lost(Client& client) {
+  ++counters_.lost;
+  server_.Close(client.id);
 }
 
 err_t ModbusTcpService::Flush(Client& client) {

@@ -30,6 +30,7 @@
 #include "lwip/tcp.h"
 #include "modbus/server.h"
 #include "tcp_keepalive.h"
+#include "tcp_pcb_util.h"
 
 namespace firmware {
 
@@ -86,13 +87,12 @@ class ModbusTcpService final : public Service, public ConfigurableService {
   };
 
   static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
-  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err);
-  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length);
-  static err_t OnPoll(void* arg, tcp_pcb* pcb);
-  static void OnError(void* arg, err_t err);
+  friend struct TcpSlotCallbacks<Client>;
 
   err_t Accept(tcp_pcb* pcb);
   err_t Receive(Client& client, pbuf* p);
+  err_t Resume(Client& client);
+  void Lost(Client& client);
   // Reopens the window, hands answers to TCP, closes the connection when the server says so. Returns
   // ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
   err_t Flush(Client& client);

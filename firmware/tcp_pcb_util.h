@@ -41,6 +41,46 @@ void DetachTcpCallbacks(tcp_pcb* pcb);
 // data; a null pbuf needs nothing). Returns ERR_OK.
 err_t DiscardTcpData(tcp_pcb* pcb, pbuf* p);
 
+// The raw-API callbacks of a service that keeps one slot per connection (Modbus TCP, EtherNet/IP, HTTP):
+// lwIP's `arg` is the slot, whose `service` and `pcb` members route each event to the service:
+//   service->Receive(slot, p)  data, or p == nullptr for the peer's FIN;
+//   service->Resume(slot)      an acknowledgement or lwIP's poll: output that waited may go now;
+//   service->Lost(slot)        lwIP dropped the connection (RST, keepalive, retransmissions); the PCB is
+//                              already freed and slot.pcb is null.
+// Receive and Resume return ERR_ABRT when they aborted the PCB. A slot that no longer holds the PCB (it
+// was closed meanwhile) is left alone. The service befriends TcpSlotCallbacks<Slot>.
+template <typename Slot>
+struct TcpSlotCallbacks {
+  // tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
+  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
+    auto* slot = static_cast<Slot*>(arg);
+    if (slot == nullptr || slot->pcb != pcb) return DiscardTcpData(pcb, p);
+    if (err != ERR_OK && p != nullptr) {
+      pbuf_free(p);
+      return ERR_OK;
+    }
+    return slot->service->Receive(*slot, p);
+  }
+  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
+    static_cast<void>(length);
+    return OnPoll(arg, pcb);
+  }
+  static err_t OnPoll(void* arg, tcp_pcb* pcb) {
+    auto* slot = static_cast<Slot*>(arg);
+    if (slot == nullptr || slot->pcb != pcb) return ERR_OK;
+    return slot->service->Resume(*slot);
+  }
+  // tcp_err_fn: the PCB is already freed; only the slot's state is left.
+  static void OnError(void* arg, err_t err) {
+    static_cast<void>(err);
+    auto* slot = static_cast<Slot*>(arg);
+    if (slot == nullptr || slot->pcb == nullptr) return;
+    slot->pcb = nullptr;
+    slot->service->Lost(*slot);
+  }
+  static constexpr TcpCallbacks kCallbacks{&OnRecv, &OnSent, &OnError, &OnPoll};
+};
+
 // FIN after the data already queued; when lwIP has no memory for the FIN, RST instead and ERR_ABRT
 // (a callback must then return ERR_ABRT). The PCB must be detached first.
 err_t CloseOrAbortTcp(tcp_pcb* pcb);

@@ -139,6 +139,17 @@ void ByteArray(web::JsonWriter& json, std::span<const std::uint8_t> bytes) {
   json.EndArray();
 }
 
+// A finished one-write job, answered: the access error's status and name, or what `ok` makes of the result.
+template <typename Ok>
+HandlerResult AnswerWrite(WebRegisterJobs& jobs, web::HttpClientId client, web::HttpResponseWriter& response, Ok&& ok) {
+  const RegisterJobResult item = jobs.results(client)[0];
+  jobs.Finish(client);
+  if (!item.result.ok()) {
+    return Error(response, StatusOf(item.result.error), drive_link::AccessErrorName(item.result.error));
+  }
+  return ok(item);
+}
+
 bool IsRead(const web::HttpRequest& request) { return request.method == "GET" || request.method == "HEAD"; }
 
 }  // namespace
@@ -369,13 +380,10 @@ HandlerResult WebApplication::WriteRegister(const Call& call) {
     devices_.access.NoteChange(call.session, call.now);
   }
   if (!jobs_.done(call.client)) return HandlerResult::kPending;
-  const RegisterJobResult item = jobs_.results(call.client)[0];
-  jobs_.Finish(call.client);
-  if (!item.result.ok()) {
-    return Error(call.response, StatusOf(item.result.error), drive_link::AccessErrorName(item.result.error));
-  }
-  return Json(call.response, HttpStatus::kOk, [&](web::JsonWriter& json) {
-    json.BeginObject().Key("number").Hex4(item.number).Key("value").Number(item.result.value).EndObject();
+  return AnswerWrite(jobs_, call.client, call.response, [&](const RegisterJobResult& item) {
+    return Json(call.response, HttpStatus::kOk, [&](web::JsonWriter& json) {
+      json.BeginObject().Key("number").Hex4(item.number).Key("value").Number(item.result.value).EndObject();
+    });
   });
 }
 
@@ -391,13 +399,10 @@ HandlerResult WebApplication::CommunicationReset(const Call& call) {
     devices_.access.NoteChange(call.session, call.now);
   }
   if (!jobs_.done(call.client)) return HandlerResult::kPending;
-  const RegisterJobResult item = jobs_.results(call.client)[0];
-  jobs_.Finish(call.client);
-  if (!item.result.ok()) {
-    return Error(call.response, StatusOf(item.result.error), drive_link::AccessErrorName(item.result.error));
-  }
-  return Json(call.response, HttpStatus::kAccepted, [](web::JsonWriter& json) {
-    json.BeginObject().Key("reset").String("communication reset started").EndObject();
+  return AnswerWrite(jobs_, call.client, call.response, [&](const RegisterJobResult&) {
+    return Json(call.response, HttpStatus::kAccepted, [](web::JsonWriter& json) {
+      json.BeginObject().Key("reset").String("communication reset started").EndObject();
+    });
   });
 }
 

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "cip/message_router_object.h"
 #include "lwip/stats.h"
 #include "lwip/memp.h"
 
@@ -60,7 +61,7 @@ void CardWebStatus::WriteLeds(web::JsonWriter& json) const {
 }
 
 void CardWebStatus::WriteConnections(web::JsonWriter& json) const {
-  std::array<cip::ConnectionInfo, 16> list{};
+  std::array<cip::ConnectionInfo, cip::kMaxCipConnections> list{};
   const std::size_t count = s_.connections.ListConnections(list);
   json.BeginArray();
   for (std::size_t i = 0; i < count; ++i) {

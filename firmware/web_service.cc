@@ -74,9 +74,7 @@ err_t WebService::Accept(tcp_pcb* pcb) {
   }
   Client& client = clients_[*id];
   client = Client{this, pcb, *id, false};
-  AttachTcpConnection(pcb, &client,
-                      {&WebService::OnRecv, &WebService::OnSent, &WebService::OnError, &WebService::OnPoll},
-                      options_.keepalive);
+  AttachTcpConnection(pcb, &client, TcpSlotCallbacks<Client>::kCallbacks, options_.keepalive);
   ++counters_.accepted;
   return ERR_OK;
 }
@@ -93,16 +91,6 @@ err_t WebService::RefuseBusy(tcp_pcb* pcb) {
   }
   tcp_output(pcb);
   return CloseOrAbortTcp(pcb);
-}
-
-err_t WebService::OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) return DiscardTcpData(pcb, p);
-  if (err != ERR_OK && p != nullptr) {
-    pbuf_free(p);
-    return ERR_OK;
-  }
-  return client->service->Receive(*client, p);
 }
 
 err_t WebService::Receive(Client& client, pbuf* p) {
@@ -125,29 +113,14 @@ err_t WebService::Receive(Client& client, pbuf* p) {
   return Flush(client);
 }
 
-err_t WebService::OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
-  static_cast<void>(length);
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) return ERR_OK;
-  client->stalled = false;
-  return client->service->Flush(*client);
+err_t WebService::Resume(Client& client) {
+  client.stalled = false;
+  return Flush(client);
 }
 
-err_t WebService::OnPoll(void* arg, tcp_pcb* pcb) {
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb != pcb) return ERR_OK;
-  client->stalled = false;
-  return client->service->Flush(*client);
-}
-
-void WebService::OnError(void* arg, err_t err) {
-  static_cast<void>(err);
-  auto* client = static_cast<Client*>(arg);
-  if (client == nullptr || client->pcb == nullptr) return;
-  WebService& service = *client->service;
-  ++service.counters_.lost;
-  client->pcb = nullptr;
-  service.server_.Close(client->id);
+void WebService::Lost(Client& client) {
+  ++counters_.lost;
+  server_.Close(client.id);
 }
 
 err_t WebService::Flush(Client& client) {

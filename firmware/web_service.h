@@ -24,6 +24,7 @@
 #include "hal/clock.h"
 #include "lwip/tcp.h"
 #include "tcp_keepalive.h"
+#include "tcp_pcb_util.h"
 #include "web/http_server.h"
 
 namespace firmware {
@@ -71,14 +72,13 @@ class WebService final : public Service, public ConfigurableService {
   };
 
   static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
-  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err);
-  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length);
-  static err_t OnPoll(void* arg, tcp_pcb* pcb);
-  static void OnError(void* arg, err_t err);
+  friend struct TcpSlotCallbacks<Client>;
 
   err_t Accept(tcp_pcb* pcb);
   err_t RefuseBusy(tcp_pcb* pcb);
   err_t Receive(Client& client, pbuf* p);
+  err_t Resume(Client& client);
+  void Lost(Client& client);
   err_t Flush(Client& client);
   err_t Close(Client& client);
   void Abort(Client& client);
