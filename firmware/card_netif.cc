@@ -63,12 +63,22 @@ err_t CardNetif::LinkOutput(pbuf* p) {
     return ERR_BUF;
   }
   const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
-  const std::span<const std::uint8_t> bytes(frame.data(), length);
+  if (!SendFrame(std::span<const std::uint8_t>(frame.data(), length))) {
+    ++counters_.tx_dropped;
+    // The frame is lost like on a cable with no link; TCP retransmits, UDP does not care.
+    return ERR_OK;
+  }
+  ++counters_.tx_frames;
+  return ERR_OK;
+}
+
+bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
   const bool group = IsGroupAddress(bytes);
+  const std::array<bool, net::kSwitchPorts> out = switch_.Egress(bytes);
   bool sent = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
     const auto id = static_cast<hal::PortId>(i);
-    if (!port_.Link(id).up) continue;
+    if (!out[i] || !port_.Link(id).up) continue;
     PortTraffic& traffic = traffic_[i];
     if (port_.Transmit(id, bytes).ok()) {
       sent = true;
@@ -77,13 +87,20 @@ err_t CardNetif::LinkOutput(pbuf* p) {
       ++traffic.out_discards;
     }
   }
-  if (!sent) {
-    ++counters_.tx_dropped;
-    // The frame is lost like on a cable with no link; TCP retransmits, UDP does not care.
-    return ERR_OK;
+  return sent;
+}
+
+void CardNetif::Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery) {
+  for (std::size_t i = 0; i < port_.PortCount(); ++i) {
+    const auto id = static_cast<hal::PortId>(i);
+    if (!delivery.to_port[i] || !port_.Link(id).up) continue;
+    PortTraffic& traffic = traffic_[i];
+    if (port_.Transmit(id, frame).ok()) {
+      ++traffic.forwarded;
+    } else {
+      ++traffic.out_discards;
+    }
   }
-  ++counters_.tx_frames;
-  return ERR_OK;
 }
 
 std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
@@ -98,8 +115,13 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
       continue;
     }
     const auto length = static_cast<u16_t>(received->length);
+    const std::span<const std::uint8_t> bytes(frame.data(), length);
     PortTraffic& traffic = traffic_[hal::PortIndex(received->port)];
-    ++(IsGroupAddress(std::span<const std::uint8_t>(frame.data(), length)) ? traffic.in_nucast : traffic.in_ucast);
+    ++(IsGroupAddress(bytes) ? traffic.in_nucast : traffic.in_ucast);
+    const net::SwitchDelivery delivery = switch_.Ingress(bytes, hal::PortIndex(received->port));
+    Forward(bytes, delivery);
+    if (!delivery.to_card) continue;
+    if (observer_ != nullptr) observer_->OnFrameToCard(bytes);
     pbuf* p = pbuf_alloc(PBUF_RAW, length, PBUF_POOL);
     if (p == nullptr) {
       ++counters_.rx_dropped_no_pbuf;
@@ -120,7 +142,14 @@ bool CardNetif::link_up() const { return netif_is_link_up(&netif_); }
 bool CardNetif::SyncLinkState() {
   bool any_up = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
-    any_up = any_up || port_.Link(static_cast<hal::PortId>(i)).up;
+    const auto id = static_cast<hal::PortId>(i);
+    const bool up = port_.Link(id).up;
+    if (up != port_up_[i]) {
+      port_up_[i] = up;
+      if (!up) switch_.PortDown(i);
+      if (up && observer_ != nullptr) observer_->OnPortLinkUp(id);
+    }
+    any_up = any_up || up;
   }
   if (any_up == link_up()) return false;
   if (any_up) {

@@ -45,7 +45,7 @@ class CardStatusPublisher final : public Service,
  public:
   static constexpr hal::Micros kPublishInterval = 100 * hal::kMicrosPerMilli;
 
-  static constexpr std::size_t kMaxFrontEnds = 8;
+  static constexpr std::size_t kMaxFrontEnds = 10;
 
   // At most kMaxFrontEnds front ends (more are ignored); `identity_sink` may be null.
   CardStatusPublisher(drive_link::RegisterProxy& proxy, modbus::Server& modbus_server,

@@ -99,6 +99,8 @@ constexpr char kHelp[] =
     "stats                  counters: event loop, netif, ports, lwIP protocols and pools\n"
     "config                 the configuration read from the inverter and its problems\n"
     "leds                   current LED colours\n"
+    "address                IP mode, phase, address in use, ACD duplicate flag, attribute 11 (hex)\n"
+    "led-inputs             what the MS/NS model is given now\n"
     "link L|R up|down       plug or unplug the cable of port L or R\n"
     "power-cycle            power-cycle the inverter and restart the card (state dir kept)\n";
 
@@ -152,10 +154,15 @@ void HandleControlCommand(std::string_view command, std::string& reply, const Ca
   } else if (verb == "stats" && count == 1) {
     AppendStats(report, reply);
     if (report.drive != nullptr) AppendDriveStats(*report.drive, reply);
+    if (report.network != nullptr) AppendNetworkStats(*report.network, reply);
   } else if (verb == "config" && count == 1 && report.drive != nullptr) {
     AppendDriveConfig(*report.drive, reply);
   } else if (verb == "leds" && count == 1) {
     reply += report.leds.Describe() + "\n";
+  } else if (verb == "address" && count == 1 && report.network != nullptr) {
+    reply += DescribeAddress(*report.network) + "\n";
+  } else if (verb == "led-inputs" && count == 1 && report.network != nullptr) {
+    reply += DescribeLedInputs(*report.network) + "\n";
   } else if (verb == "power-cycle" && count == 1) {
     // The card and the drive lose power together: the inverter's image is stored before the card
     // restarts (re-exec), and the new process starts the inverter from it.

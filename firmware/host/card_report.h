@@ -13,6 +13,7 @@
 #include "event_loop.h"
 #include "hal/reset.h"
 #include "logging_leds.h"
+#include "network_report.h"
 #include "poll_waiter.h"
 #include "sim_inverter.h"
 
@@ -25,6 +26,8 @@ struct CardReport {
   hal::host::PollWaiter& waiter;
   // The drive link, register proxy and Modbus server; null in tests of the network side alone.
   const DriveReport* drive = nullptr;
+  // Addressing, switch and LED inputs; null in tests of the network side alone.
+  const NetworkReport* network = nullptr;
 };
 
 using SetPlugged = std::function<base::Status(hal::PortId, bool)>;

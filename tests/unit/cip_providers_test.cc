@@ -52,7 +52,7 @@ class CipProvidersTest : public drive_link::test::RegisterProxyFixture {
     StartLoaded();
     writer_ = std::make_unique<ParameterWriter>(*proxy_);
     identity_ = std::make_unique<CardIdentity>(port_, *proxy_);
-    tcpip_ = std::make_unique<CardTcpIp>(netif_, *writer_, store_);
+    tcpip_ = std::make_unique<CardTcpIp>(netif_, addressing_, *writer_, store_);
     links_ = std::make_unique<CardEthernetLinks>(netif_, *writer_);
     ASSERT_TRUE(tcpip_->Configure(proxy_->config()).ok());
     ASSERT_TRUE(links_->Configure(proxy_->config()).ok());
@@ -70,6 +70,8 @@ class CipProvidersTest : public drive_link::test::RegisterProxyFixture {
 
   hal::test::FakeFramePort port_{kMac, 2};
   CardNetif netif_{port_};
+  hal::test::CountingRandom random_;
+  CardAddressing addressing_{netif_, clock_, random_};
   MemoryNvStore store_;
   std::unique_ptr<ParameterWriter> writer_;
   std::unique_ptr<CardIdentity> identity_;
@@ -159,7 +161,7 @@ TEST_F(CipProvidersTest, ExtrasKeptInTheCardsStoreAcrossARestart) {
   settings.static_configuration.name_server_2 = 0x0A000002;
   ASSERT_TRUE(settings.static_configuration.domain_name.Assign(std::string_view("plant.example")));
   ASSERT_TRUE(tcpip_->StoreSettings(settings).ok());
-  CardTcpIp restarted(netif_, *writer_, store_);
+  CardTcpIp restarted(netif_, addressing_, *writer_, store_);
   ASSERT_TRUE(restarted.Configure(proxy_->config()).ok());
   EXPECT_EQ(restarted.StoredSettings(), settings);
 }
@@ -174,7 +176,7 @@ TEST_F(CipProvidersTest, DamagedExtrasRecord_Defaults) {
 TEST_F(CipProvidersTest, DriveLinkDown_StoreRefused) {
   Start();  // the configuration is not read yet
   writer_ = std::make_unique<ParameterWriter>(*proxy_);
-  CardTcpIp tcpip(netif_, *writer_, store_);
+  CardTcpIp tcpip(netif_, addressing_, *writer_, store_);
   cip::TcpIpSettings settings = tcpip.StoredSettings();
   settings.startup = cip::StartupConfiguration::kBootp;
   EXPECT_EQ(tcpip.StoreSettings(settings).code(), base::StatusCode::kFailedPrecondition);
