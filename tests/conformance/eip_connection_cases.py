@@ -141,6 +141,8 @@ def matrix_rows(o):
     path_refusal("a point before the class: 0x0315", 0x0315, pt(21) + cls + cfg + pt(71))
     path_refusal("a port segment after the class: 0x0315", 0x0315, cls + bytes([0x01, 0x00]) + cfg + pt(21) + pt(71))
     path_refusal("32-bit class segment: 0x0315", 0x0315, bytes([0x22, 0, 4, 0, 0, 0]) + cfg + pt(21) + pt(71))
+    path_refusal("a data segment claiming 255 words (OpENer #570): 0x0315", 0x0315,
+                 cls + cfg + pt(21) + pt(71) + bytes([0x80, 0xFF, 0x01, 0x02]))
     for name, key, extended in (("vendor 378", electronic_key(vendor=378), 0x0114),
                                 ("product code 32001 (a VF-S15) on a VF-MB1", electronic_key(product=32001), 0x0114),
                                 ("device type 12", electronic_key(device_type=12), 0x0115),
@@ -218,6 +220,12 @@ def sequence(protocol):
         t = o.triad()
         expect_raw(state["client"], o.request(t, path=io_path(198, 70), o_t_size=2), refused_bytes(t, [0x0119]))
 
+    @step(LIMITS, "listen only 198/71 joins the owner's point-to-point production (OpENer #279), then closes")
+    def listener_on_p2p():
+        t = o.triad()
+        open_ok(state["client"], o.request(t, path=io_path(198, 71), o_t_size=2, t_o_size=6), t)
+        close_ok(state["client"], t, io_path(198, 71))
+
     @step(LIMITS, "explicit Set of output 21 while the owner holds it: 0x10")
     def owned_assembly():
         got = state["client"].cip(mr_request(0x10, epath(0x04, 21, 3), bytes(4))).raw()
@@ -266,6 +274,27 @@ def sequence(protocol):
     def per_point():
         t = o.triad()
         expect_raw(state["client"], multicast(t), refused_bytes(t, [0x011A]))
+
+    set_multicast = lambda data: state["client"].cip(mr_request(0x10, epath(0xF5, 1, 9), bytes.fromhex(data))).raw()  # noqa: E731
+
+    @step(LIMITS, "(setup) TCP/IP 9: one multicast group (239.192.1.0), the one 151's production has")
+    def one_group():
+        got = set_multicast("01 00 01 00 00 01 C0 EF")
+        if got != bytes([0x90, 0, 0, 0]):
+            raise Failure(f"Set TCP/IP 9: {hexs(got)}")
+
+    @step(LIMITS, "a new multicast production (199/150) without a group left: 0x0113")
+    def no_group():
+        t = o.triad()
+        request = o.request(t, path=io_path(199, 150), o_t_size=6, t_o_size=6, t_o_kind=TYPE_MULTICAST,
+                            o_t_rpi=100000, t_o_rpi=100000, multiplier=7, t_o_id=0)
+        expect_raw(state["client"], request, refused_bytes(t, [0x0113]))
+
+    @step(LIMITS, "(restore) TCP/IP 9: allocation control 0 (the CIP default)")
+    def default_groups():
+        got = set_multicast("00 00 00 00 00 00 00 00")
+        if got != bytes([0x90, 0, 0, 0]):
+            raise Failure(f"Set TCP/IP 9: {hexs(got)}")
 
     explicit = lambda t: o.request(t, path=ROUTER_PATH, transport=CLASS3_SERVER_APPLICATION, o_t_size=504,  # noqa: E731
                                    t_o_size=504, o_t_rpi=1_000_000, t_o_rpi=1_000_000, multiplier=7)

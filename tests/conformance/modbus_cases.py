@@ -189,6 +189,18 @@ ACCESS = [
 ]
 
 
+# ---- The order of checks: unit, function (01), data (03), address (02), execution (04) ---------------------
+
+ORDER = [
+    ("FC 03 count 0 from FFFA: 03 before 02", "03 FF FA 00 00", "83 03"),
+    ("FC 03 count 64 from FFF9: 03 before 02", "03 FF F9 00 40", "83 03"),
+    ("FC 06 to a monitor, PDU cut: 03 before 02", "06 FE 00 00", "86 03"),
+    ("FC 16 to 000B with a bad byte count: 03 before 02", "10 00 0B 00 01 04 00 32", "90 03"),
+    ("FC 16 to the option board with a bad byte count: 01 before 03", "10 00 01 00 01 04 00 00", "90 01", 251),
+    ("FC 43 code 9 to unit 252: 0A before 03", "2B 0E 09 00", "AB 0A", 252),
+]
+
+
 def probe_pair(tid=0xBEEF):
     """Unit 251 register 1 (c500 = 0): a request with a known answer."""
     return adu(251, "03 00 01 00 01", tid), adu(251, "03 02 00 00", tid)
@@ -340,6 +352,7 @@ def cases():
     out += table("address (02)", ADDRESSES_MASTER, on="master")
     out += table("value (03, 0x8000)", VALUES)
     out += table("IO scanning access (01)", ACCESS)
+    out += table("order of checks", ORDER)
     out += framing_cases()
     return out
 
