@@ -171,6 +171,15 @@ class Protocol:
         return []
 
 
+def card_alive():
+    """The card process (CARD_PID of tools/netns) still runs."""
+    pid = int(os.environ["CARD_PID"])
+    try:
+        os.kill(pid, 0)
+    except OSError as error:
+        raise Failure(f"card process {pid}: {error}") from error
+
+
 def run_tcp_case(protocol, case):
     link = protocol.connect(case)
     failed = True
@@ -243,8 +252,9 @@ def main(protocol, cases):
 
     total = sum(p + f for p, f in results.values())
     print(f"\n{protocol.name}: {total} cases in {time.monotonic() - started:.1f} s")
+    width = max((len(area) for area in results), default=0)
     for area, (p, f) in results.items():
-        print(f"  {area:28s} {p:4d} passed {f:4d} failed")
+        print(f"  {area:{width}s} {p:4d} passed {f:4d} failed")
     if failures:
         print(f"FAILED {len(failures)}:\n  " + "\n  ".join(failures))
         return 1

@@ -6,10 +6,9 @@ The matrix needs state (an exclusive owner to collide with, a multicast producti
 so it is a sequence: each step is reported as one case, in order. Requests come from NEG_IP; the I/O
 endpoint (UDP 2222) feeds the exclusive owner so that it stays open while the refusals run.
 """
-import os
 import time
 
-from conformance import Failure, hexs
+from conformance import Failure, card_alive, hexs
 from eip_io import (CLASS1_CYCLIC, CLASS3_SERVER_APPLICATION, FORWARD_CLOSE, FORWARD_OPEN, LARGE_FORWARD_OPEN,
                     ROUTER_PATH, TYPE_MULTICAST, TYPE_NULL, TYPE_P2P, TYPE_RESERVED,
                     ExplicitConnection, IoConnection, IoEndpoint, Triad, close_success_bytes, decode_open_success,
@@ -238,63 +237,55 @@ def sequence(protocol):
         if got != bytes([0x90, 0, 0x10, 0]):
             raise Failure(f"got {hexs(got)}")
 
-    multicast = lambda t, **kw: o.request(t, path=io_path(199, 151), o_t_size=6, t_o_size=10,  # noqa: E731
-                                          t_o_kind=TYPE_MULTICAST, o_t_rpi=100000, t_o_rpi=100000, multiplier=7,
-                                          t_o_id=0, **kw)
+    def multicast(t, **changes):
+        """Input only 199/151 with a multicast T->O at 100 ms (a heartbeat O->T with the run/idle header)."""
+        shape = dict(path=io_path(199, 151), o_t_size=6, t_o_size=10, t_o_kind=TYPE_MULTICAST, o_t_rpi=100000,
+                     t_o_rpi=100000, multiplier=7, t_o_id=0)
+        shape.update(changes)
+        return o.request(t, **shape)
+
     state["opened"] = []  # (triad, path) to close at the end
 
-    @step(LIMITS, "(setup) input only 199/151 with multicast T->O opens (the group in a socket address item)")
-    def multicast_first():
-        t = o.triad()
-        open_ok(state["client"], multicast(t), t, (100000, 100000), multicast=True)
-        state["opened"].append((t, io_path(199, 151)))
-
-    @step(LIMITS, "joining the multicast production with another T->O RPI: 0x0112 with the production's RPI")
-    def multicast_rpi():
-        t = o.triad()
-        request = o.request(t, path=io_path(199, 151), o_t_size=6, t_o_size=10, t_o_kind=TYPE_MULTICAST,
-                            o_t_rpi=100000, t_o_rpi=50000, multiplier=7, t_o_id=0)
-        expect_raw(state["client"], request, refused_bytes(t, rpi_refusal_words(0x0112, 0, 4, 100000, 100000)))
-
-    @step(LIMITS, "joining it with another T->O size: 0x0128 naming the production's size (10)")
-    def multicast_size():
-        t = o.triad()
-        request = o.request(t, path=io_path(199, 151), o_t_size=6, t_o_size=8, t_o_kind=TYPE_MULTICAST,
-                            o_t_rpi=100000, t_o_rpi=100000, multiplier=7, t_o_id=0)
-        expect_raw(state["client"], request, refused_bytes(t, [0x0128, 10]))
-
-    for n in range(3):
-        @step(LIMITS, f"(setup) multicast join {n + 2} of 4 on point 151")
+    for n in range(4):
+        @step(LIMITS, f"(setup) input only 199/151 with multicast T->O, {n + 1} of 4 sharing the production "
+                      "(the group in a socket address item)")
         def multicast_join():
             t = o.triad()
             open_ok(state["client"], multicast(t), t, (100000, 100000), multicast=True)
             state["opened"].append((t, io_path(199, 151)))
+
+        if n == 0:
+            @step(LIMITS, "joining the multicast production with another T->O RPI: 0x0112 with the production's RPI")
+            def multicast_rpi():
+                t = o.triad()
+                expect_raw(state["client"], multicast(t, t_o_rpi=50000),
+                           refused_bytes(t, rpi_refusal_words(0x0112, 0, 4, 100000, 100000)))
+
+            @step(LIMITS, "joining it with another T->O size: 0x0128 naming the production's size (10)")
+            def multicast_size():
+                t = o.triad()
+                expect_raw(state["client"], multicast(t, t_o_size=8), refused_bytes(t, [0x0128, 10]))
 
     @step(LIMITS, "a 5th class 1 connection on point 151: 0x011A")
     def per_point():
         t = o.triad()
         expect_raw(state["client"], multicast(t), refused_bytes(t, [0x011A]))
 
-    set_multicast = lambda data: state["client"].cip(mr_request(0x10, epath(0xF5, 1, 9), bytes.fromhex(data))).raw()  # noqa: E731
-
-    @step(LIMITS, "(setup) TCP/IP 9: one multicast group (239.192.1.0), the one 151's production has")
-    def one_group():
-        got = set_multicast("01 00 01 00 00 01 C0 EF")
+    def set_groups(data):
+        got = state["client"].cip(mr_request(0x10, epath(0xF5, 1, 9), bytes.fromhex(data))).raw()
         if got != bytes([0x90, 0, 0, 0]):
-            raise Failure(f"Set TCP/IP 9: {hexs(got)}")
+            raise Failure(f"Set TCP/IP 9 {data}: {hexs(got)}")
+
+    steps.append((LIMITS, "(setup) TCP/IP 9: one multicast group (239.192.1.0), the one 151's production has",
+                  lambda: set_groups("01 00 01 00 00 01 C0 EF")))
 
     @step(LIMITS, "a new multicast production (199/150) without a group left: 0x0113")
     def no_group():
         t = o.triad()
-        request = o.request(t, path=io_path(199, 150), o_t_size=6, t_o_size=6, t_o_kind=TYPE_MULTICAST,
-                            o_t_rpi=100000, t_o_rpi=100000, multiplier=7, t_o_id=0)
-        expect_raw(state["client"], request, refused_bytes(t, [0x0113]))
+        expect_raw(state["client"], multicast(t, path=io_path(199, 150), t_o_size=6), refused_bytes(t, [0x0113]))
 
-    @step(LIMITS, "(restore) TCP/IP 9: allocation control 0 (the CIP default)")
-    def default_groups():
-        got = set_multicast("00 00 00 00 00 00 00 00")
-        if got != bytes([0x90, 0, 0, 0]):
-            raise Failure(f"Set TCP/IP 9: {hexs(got)}")
+    steps.append((LIMITS, "(restore) TCP/IP 9: allocation control 0 (the CIP default)",
+                  lambda: set_groups("00 00 00 00 00 00 00 00")))
 
     explicit = lambda t: o.request(t, path=ROUTER_PATH, transport=CLASS3_SERVER_APPLICATION, o_t_size=504,  # noqa: E731
                                    t_o_size=504, o_t_rpi=1_000_000, t_o_rpi=1_000_000, multiplier=7)
@@ -454,11 +445,7 @@ def health(protocol):
 
     @check("the card process is alive")
     def alive():
-        pid = int(os.environ["CARD_PID"])
-        try:
-            os.kill(pid, 0)
-        except OSError as error:
-            raise Failure(f"card process {pid}: {error}") from error
+        card_alive()
         if _endpoint:
             _endpoint[0].close()
             if _endpoint[0].errors:

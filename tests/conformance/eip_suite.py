@@ -131,7 +131,7 @@ def encapsulation_cases():
                       error(SEND_RR_DATA, OWN, NO_MEMORY), on="session"))
     cases.append(Case(area, "ListIdentity announcing 1000 bytes: 0x0002", Msg(LIST_IDENTITY, bytes(1000)),
                       error(LIST_IDENTITY, 0, NO_MEMORY)))
-    cases.append(Case(area, "SendRRData announcing 65535 bytes, sent in 4 segments: 0x0002 once",
+    cases.append(Case(area, "SendRRData announcing 65535 bytes, sent in two writes: 0x0002 once",
                       [lambda k: Msg(SEND_RR_DATA, bytes(65535), OWN)(k)[:40000],
                        Chunk(lambda k: Msg(SEND_RR_DATA, bytes(65535), OWN)(k)[40000:], 0.05)],
                       error(SEND_RR_DATA, OWN, NO_MEMORY), on="session"))

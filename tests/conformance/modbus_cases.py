@@ -11,7 +11,7 @@ import os
 import struct
 import time
 
-from conformance import CLOSED, Case, Chunk, Failure, Link, Protocol, Quiet, hexs, unhex
+from conformance import CLOSED, Case, Chunk, Failure, Link, Protocol, Quiet, card_alive, hexs, unhex
 
 CARD = os.environ.get("CARD_IP", "127.0.0.1")
 HOST = os.environ.get("HOST_IP", "127.0.0.1")
@@ -315,7 +315,7 @@ class ModbusProtocol(Protocol):
                 ("IO scanning FC 23 from the master", health_io_scanning),
                 ("FC 43 basic identification of the option board", health_identification),
                 ("every connection of the suite is closed (modbus.clients 0)", health_clients),
-                ("the card process is alive", health_alive)]
+                ("the card process is alive", card_alive)]
 
 
 def served_after(first_bytes):
@@ -432,9 +432,3 @@ def health_clients():
         time.sleep(0.1)
 
 
-def health_alive():
-    pid = int(os.environ["CARD_PID"])
-    try:
-        os.kill(pid, 0)
-    except OSError as error:
-        raise Failure(f"card process {pid}: {error}") from error
