@@ -210,6 +210,10 @@ def read_acc(tid):
     return adu(1, "03 00 09 00 01", tid)
 
 
+def acc_answer(tid, unit=1):
+    return adu(unit, f"03 02 00 {ACC:02X}", tid)
+
+
 def framing_cases():
     area = "MBAP framing"
     cases = []
@@ -224,12 +228,12 @@ def framing_cases():
                       adu(1, "", t(), 2, 6)[:6], [CLOSED], on="neg"))
     a, b = t(), t()
     cases.append(Case(area, "a request, then protocol id 2 in the same segment: answered, then closed",
-                      read_acc(a) + adu(1, "03 00 09 00 01", b, 2), [adu(1, f"03 02 00 {ACC:02X}", a), CLOSED],
+                      read_acc(a) + adu(1, "03 00 09 00 01", b, 2), [acc_answer(a), CLOSED],
                       on="neg"))
     a, b, c = t(), t(), t()
     cases.append(Case(area, "two requests, then length 0: both answered, then closed",
                       read_acc(a) + probe_pair(b)[0] + adu(1, "", c, 0, 0)[:7],
-                      [adu(1, f"03 02 00 {ACC:02X}", a), probe_pair(b)[1], CLOSED], on="neg"))
+                      [acc_answer(a), probe_pair(b)[1], CLOSED], on="neg"))
     # Length lies. Too short: the ADU ends early and is judged as it is (03); the byte left over starts the
     # next header, which the next bytes complete.
     a = t()
@@ -251,15 +255,15 @@ def framing_cases():
     a = t()
     request = read_acc(a)
     cases.append(Case(area, "FC 03 one byte per segment", [Chunk(request[i:i + 1]) for i in range(len(request))],
-                      [adu(1, f"03 02 00 {ACC:02X}", a)], on="neg"))
+                      [acc_answer(a)], on="neg"))
     a = t()
     request = read_acc(a)
     cases.append(Case(area, "FC 03 split inside the header (3 + 9)", [Chunk(request[:3]), Chunk(request[3:])],
-                      [adu(1, f"03 02 00 {ACC:02X}", a)], on="neg"))
+                      [acc_answer(a)], on="neg"))
     a = t()
     request = read_acc(a)
     cases.append(Case(area, "FC 03 split after the unit id (7 + 5)", [Chunk(request[:7]), Chunk(request[7:])],
-                      [adu(1, f"03 02 00 {ACC:02X}", a)], on="neg"))
+                      [acc_answer(a)], on="neg"))
     a = t()
     request = adu(1, "10 00 09 00 01 02 00 00", a)
     cases.append(Case(area, "FC 16 with an invalid value split in 3 segments: 03 once",
@@ -268,10 +272,10 @@ def framing_cases():
     a, b = t(), t()
     cases.append(Case(area, "one ADU and a half, then the rest: two answers",
                       [Chunk(read_acc(a) + probe_pair(b)[0][:4]), Chunk(probe_pair(b)[0][4:])],
-                      [adu(1, f"03 02 00 {ACC:02X}", a), probe_pair(b)[1]], on="neg"))
+                      [acc_answer(a), probe_pair(b)[1]], on="neg"))
     tids = [t() for _ in range(3)]
     cases.append(Case(area, "three ADUs in one segment: three answers in order",
-                      b"".join(read_acc(x) for x in tids), [adu(1, f"03 02 00 {ACC:02X}", x) for x in tids],
+                      b"".join(read_acc(x) for x in tids), [acc_answer(x) for x in tids],
                       on="neg"))
     mixed = [("03 00 09 00 01", f"03 02 00 {ACC:02X}", 1), ("01 00 00 00 01", "81 01", 1),
              ("03 00 01 00 01", "03 02 00 00", 251), ("03 00 09 00 00", "83 03", 1),
@@ -285,8 +289,8 @@ def framing_cases():
     cases.append(Case(area, "40 ADUs in one segment (480 bytes): 40 answers in order",
                       b"".join(probe_pair(x)[0] for x in tids), [probe_pair(x)[1] for x in tids], on="neg"))
     cases.append(Case(area, "transaction id 0xFFFF and unit 248 echoed",
-                      adu(248, "03 00 09 00 01", 0xFFFF), [adu(248, f"03 02 00 {ACC:02X}", 0xFFFF)], on="neg"))
-    cases.append(Case(area, "transaction id 0 echoed", adu(0, "03 00 09 00 01", 0), [adu(0, f"03 02 00 {ACC:02X}", 0)],
+                      adu(248, "03 00 09 00 01", 0xFFFF), [acc_answer(0xFFFF, 248)], on="neg"))
+    cases.append(Case(area, "transaction id 0 echoed", adu(0, "03 00 09 00 01", 0), [acc_answer(0, 0)],
                       on="neg"))
     return cases
 
@@ -328,7 +332,7 @@ def served_after(first_bytes):
         request, answer = probe_pair()
         link.send(read_acc(0x4444) + request)
         got = [link.receive(), link.receive()]
-        if got != [adu(1, f"03 02 00 {ACC:02X}", 0x4444), answer]:
+        if got != [acc_answer(0x4444), answer]:
             raise Failure(f"next client: got {[hexs(g) for g in got]}")
     finally:
         link.close()
