@@ -76,7 +76,8 @@ class ModbusTcpService final : public Service, public ConfigurableService {
   hal::Micros NextDeadline() const override;
 
   const ModbusTcpCounters& counters() const { return counters_; }
-  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: reset from the accept callback.
+  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: reset from
+  // the accept callback.
   base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(clients_), clients_.size()); }
 
  private:

@@ -63,7 +63,8 @@ class WebService final : public Service, public ConfigurableService {
   hal::Micros NextDeadline() const override;
 
   const WebServiceCounters& counters() const { return counters_; }
-  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: 503 and closed (counters().refused_busy; an evicted idle connection is not a refusal).
+  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: 503 and
+  // closed (counters().refused_busy; an evicted idle connection is not a refusal).
   base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(clients_), clients_.size()); }
 
  private:

@@ -156,6 +156,14 @@ def connect_refused(port, what):
     fail(f"{what}: expected a reset, got {'FIN' if data == b'' else hexs(data)}")
 
 
+def connect_beyond(port, capacity, count, what):
+    """`count` connections at once: the first `capacity` are accepted (returned), the rest refused."""
+    accepted = [connect(port) for _ in range(capacity)]
+    for i in range(capacity, count):
+        connect_refused(port, f"{what} {i + 1} of {count}")
+    return accepted
+
+
 def exchange(sock, request, size):
     sock.sendall(request)
     data = b""
@@ -228,12 +236,7 @@ def receive_until_closed(sock):
 
 def modbus():
     baseline = watched(ctl("stats"))
-    served = []
-    for i in range(2 * MODBUS_CLIENTS):
-        if i < MODBUS_CLIENTS:
-            served.append(connect(MODBUS_PORT))
-        else:
-            connect_refused(MODBUS_PORT, f"Modbus client {i + 1} of {2 * MODBUS_CLIENTS}")
+    served = connect_beyond(MODBUS_PORT, MODBUS_CLIENTS, 2 * MODBUS_CLIENTS, "Modbus client")
     for i, sock in enumerate(served):
         same_bytes(f"Modbus client {i + 1} served", exchange(sock, READ_VERSION, len(VERSION_ANSWER)), VERSION_ANSWER)
     stats = ctl("stats")
@@ -302,6 +305,18 @@ def open_or_refuse(client, triad, request, refusal, what):
         same_bytes(what, raw, refused_bytes(triad, [refusal]))
 
 
+def open_twice(client, capacity, refusal, make):
+    """2 x `capacity` Forward_Opens, `make(n)` -> (triad, path, request, what): the first `capacity` open,
+    the others get exactly 0x01 with `refusal`. Returns the (triad, path) of those open."""
+    opened = []
+    for n in range(2 * capacity):
+        triad, path, request, what = make(n)
+        open_or_refuse(client, triad, request, None if n < capacity else refusal, what)
+        if n < capacity:
+            opened.append((triad, path))
+    return opened
+
+
 def close_connection(client, triad, path, what):
     mr, raw, _ = open_connection(client, forward_close(triad, path))
     if mr.general != 0:
@@ -314,12 +329,7 @@ def ethernet_ip():
     sink.bind((HOST_IP, 2222))
     baseline = watched(ctl("stats"))
 
-    accepted = []
-    for i in range(2 * EIP_SESSIONS):
-        if i < EIP_TCP_CONNECTIONS:
-            accepted.append(connect(EIP_PORT))
-        else:
-            connect_refused(EIP_PORT, f"EtherNet/IP TCP connection {i + 1}")
+    accepted = connect_beyond(EIP_PORT, EIP_TCP_CONNECTIONS, 2 * EIP_SESSIONS, "EtherNet/IP TCP connection")
     handles = []
     for i, sock in enumerate(accepted):
         handle, reply = register(sock)
@@ -331,7 +341,8 @@ def ethernet_ip():
         else:
             same_bytes(f"RegisterSession {i + 1} beyond the sessions", reply, register_reply(0x0002, 0))
     stats = ctl("stats")
-    expect_pool(stats, "eip_tcp_slots", EIP_TCP_CONNECTIONS, EIP_TCP_CONNECTIONS, 2 * EIP_SESSIONS - EIP_TCP_CONNECTIONS)
+    tcp_refused = 2 * EIP_SESSIONS - EIP_TCP_CONNECTIONS
+    expect_pool(stats, "eip_tcp_slots", EIP_TCP_CONNECTIONS, EIP_TCP_CONNECTIONS, tcp_refused)
     expect_pool(stats, "eip_connections", EIP_TCP_CONNECTIONS, EIP_TCP_CONNECTIONS, 0)
     expect_pool(stats, "eip_sessions", EIP_SESSIONS, EIP_SESSIONS, EIP_TCP_CONNECTIONS - EIP_SESSIONS)
     for sock in accepted:
@@ -344,26 +355,19 @@ def ethernet_ip():
     same("RegisterSession", client.register_session().status, 0)
     points = [(70, 6), (71, 6), (150, 6), (151, 10)]  # four connections each (the per-point limit)
     beyond = [(152, 14), (155, 20)]                    # free points: only the table's limit refuses them
-    opened = []
-    for n in range(2 * CIP_CONNECTIONS):
+
+    def class1(n):
         point, size = points[n // 4] if n < CIP_CONNECTIONS else beyond[n % 2]
-        triad, path, request = input_only(0x100 + n, point, size)
-        refusal = None if n < CIP_CONNECTIONS else 0x0113
-        open_or_refuse(client, triad, request, refusal, f"class 1 Forward_Open {n + 1} (input only 199/{point})")
-        if refusal is None:
-            opened.append((triad, path))
+        return input_only(0x100 + n, point, size) + (f"class 1 Forward_Open {n + 1} (input only 199/{point})",)
+
+    opened = open_twice(client, CIP_CONNECTIONS, 0x0113, class1)
     stats = ctl("stats")
     expect_pool(stats, "cip_connections", CIP_CONNECTIONS, CIP_CONNECTIONS, CIP_CONNECTIONS)
     expect_pool(stats, "cip_productions", CIP_CONNECTIONS, CIP_CONNECTIONS, 0)
     for triad, path in opened:
         close_connection(client, triad, path, "class 1")
-    opened = []
-    for n in range(2 * CIP_EXPLICIT):
-        triad, path, request = explicit(0x200 + n)
-        refusal = None if n < CIP_EXPLICIT else 0x011A
-        open_or_refuse(client, triad, request, refusal, f"class 3 Forward_Open {n + 1}")
-        if refusal is None:
-            opened.append((triad, path))
+    opened = open_twice(client, CIP_EXPLICIT, 0x011A,
+                        lambda n: explicit(0x200 + n) + (f"class 3 Forward_Open {n + 1}",))
     stats = ctl("stats")
     expect_pool(stats, "cip_explicit_connections", CIP_EXPLICIT, CIP_EXPLICIT, CIP_EXPLICIT)
     expect_pool(stats, "cip_connections", CIP_EXPLICIT, CIP_CONNECTIONS, CIP_CONNECTIONS)

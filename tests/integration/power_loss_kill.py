@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The card killed (SIGKILL) in the middle of writes, then started again on its state dir
 (docs/robustness.md "Power loss"). Run by tools/netns with c500 = 1 (CARD_IP, CARD_PID, CARD_STATE_DIR,
-CARD_CONTROL, CARD_LOG, CARD_READY).
+CARD_READY).
 
 Each round, three writers run at once until the kill, at a random moment 50-1600 ms after they start:
   - the TCP/IP object's TTL (attribute 8) over EtherNet/IP: the card's NV record kNvTcpIpExtras;
@@ -32,11 +32,8 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from eip_originator import Client  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CTL = os.path.join(ROOT, "tools", "card-ctl")
 CARD_IP = os.environ["CARD_IP"]
 STATE = os.environ["CARD_STATE_DIR"]
-CONTROL = os.environ["CARD_CONTROL"]
 
 ROUNDS = 12
 TIME_LIMIT = 75.0

@@ -215,10 +215,10 @@ TEST_F(CipProvidersTest, ParameterWriter_QueueFull_NothingQueued) {
   EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{1, ParameterWriter::kMaxQueued, 1, 1}));
   distinct.pop_back();  // 31 new ones and the one queued: exactly full
   EXPECT_TRUE(writer_->Enqueue(distinct).ok());
-  EXPECT_EQ(writer_->queue_pool(),
-            (base::PoolStats{ParameterWriter::kMaxQueued, ParameterWriter::kMaxQueued, ParameterWriter::kMaxQueued, 1}));
+  constexpr std::size_t kMax = ParameterWriter::kMaxQueued;
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
   DrainWriter();
-  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{0, ParameterWriter::kMaxQueued, ParameterWriter::kMaxQueued, 1}));
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{0, kMax, kMax, 1}));
 }
 
 TEST_F(CipProvidersTest, ParameterWriter_RefusedWriteCountedQueueGoesOn) {
