@@ -4,6 +4,7 @@
 #include <string>
 
 #include "lwip/memp.h"
+#include "lwip/priv/tcp_priv.h"
 #include "lwip/stats.h"
 #include "sim_control.h"
 
@@ -45,6 +46,22 @@ void AppendMem(std::string& out, const std::string& prefix, const stats_mem& m) 
   Line(out, prefix + ".max", m.max);
   Line(out, prefix + ".avail", m.avail);
   Line(out, prefix + ".err", m.err);
+}
+
+std::uint64_t CountPcbs(const tcp_pcb* list) {
+  std::uint64_t count = 0;
+  for (const tcp_pcb* pcb = list; pcb != nullptr; pcb = pcb->next) ++count;
+  return count;
+}
+
+// lwIP's TCP PCB lists. A connection the card closed first stays in TIME_WAIT for 2 x TCP_MSL and keeps
+// its TCP_PCB (docs/robustness.md "Exhaustion"); these lines tell those apart from a leak.
+void AppendTcpPcbs(std::string& out) {
+  Line(out, "lwip.tcp_pcbs.active", CountPcbs(tcp_active_pcbs));
+  Line(out, "lwip.tcp_pcbs.time_wait", CountPcbs(tcp_tw_pcbs));
+  std::uint64_t listening = 0;
+  for (const tcp_pcb_listen* pcb = tcp_listen_pcbs.listen_pcbs; pcb != nullptr; pcb = pcb->next) ++listening;
+  Line(out, "lwip.tcp_pcbs.listen", listening);
 }
 
 void AppendPorts(std::string& out, const hal::FramePort& port) {
@@ -96,7 +113,7 @@ std::size_t Split(std::string_view text, std::string_view (&words)[kMaxWords]) {
 
 constexpr char kHelp[] =
     "help                   this list\n"
-    "stats                  counters: event loop, netif, ports, lwIP protocols and pools\n"
+    "stats                  counters: event loop, netif, ports, lwIP protocols and pools, the card's pools\n"
     "config                 the configuration read from the inverter and its problems\n"
     "leds                   current LED colours\n"
     "address                IP mode, phase, address in use, ACD duplicate flag, attribute 11 (hex)\n"
@@ -135,6 +152,7 @@ void AppendStats(const CardReport& report, std::string& out) {
   AppendIgmp(out, lwip_stats.igmp);
   AppendProto(out, "udp", lwip_stats.udp);
   AppendProto(out, "tcp", lwip_stats.tcp);
+  AppendTcpPcbs(out);
   AppendMem(out, "lwip.mem", lwip_stats.mem);
   for (int i = 0; i < MEMP_MAX; ++i) {
     const stats_mem* pool = lwip_stats.memp[i];
@@ -155,6 +173,7 @@ void HandleControlCommand(std::string_view command, std::string& reply, const Ca
     AppendStats(report, reply);
     if (report.drive != nullptr) AppendDriveStats(*report.drive, reply);
     if (report.network != nullptr) AppendNetworkStats(*report.network, reply);
+    if (report.pools != nullptr) AppendPoolStats(*report.pools, reply);
   } else if (verb == "config" && count == 1 && report.drive != nullptr) {
     AppendDriveConfig(*report.drive, reply);
   } else if (verb == "leds" && count == 1) {

@@ -10,6 +10,7 @@
 #include "card_addressing.h"
 #include "card_indicators.h"
 #include "card_netif.h"
+#include "card_records.h"
 #include "card_report.h"
 #include "card_status_publisher.h"
 #include "control_server.h"
@@ -45,28 +46,12 @@
 namespace host {
 namespace {
 
-// The card's own NV records. The MAC is factory data: a real card has it burnt in; the host card
-// makes up a locally administered one on first start and keeps it in the state dir.
-constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
-// The web server's read and write passwords, as salted hashes (docs/web.md "Passwords and sessions").
-constexpr hal::NvRecordId kNvWebPasswords = 0x0020;
-
 // The card's firmware version as FC 43 and unit 251 show it ("0106": V1.06, the version of the card
 // this one imitates, seed 000 §8.8).
 constexpr std::uint16_t kFirmwareVersion = 0x0106;
 
 // How long a requested reset waits for queued parameter writes (32 writes take well under a second).
 constexpr hal::Micros kResetDrainLimit = 3 * hal::kMicrosPerSecond;
-
-hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
-  hal::MacAddress mac{};
-  const base::Result<std::size_t> read = store.Read(kNvFactoryMac, mac);
-  if (read.ok() && *read == mac.size()) return mac;
-  random.Fill(mac);
-  mac[0] = static_cast<std::uint8_t>((mac[0] & 0xFC) | 0x02);  // unicast, locally administered
-  store.Write(kNvFactoryMac, mac).IgnoreError();  // a read-only state dir still gives a working card
-  return mac;
-}
 
 std::string FormatMac(const hal::MacAddress& mac) {
   char text[18];
@@ -322,7 +307,9 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
 
   const DriveReport drive_report{proxy, modbus_server, modbus_service, eip_card, parameter_writer};
   const NetworkReport network_report{netif, addressing, indicators};
-  CardReport report{netif, loop, logged_leds, waiter, &drive_report, &network_report};
+  const PoolReport pool_report{modbus_service, modbus_server, eip_card, proxy, parameter_writer,
+                               web_service,    http_server,   access,   clock};
+  CardReport report{netif, loop, logged_leds, waiter, &drive_report, &network_report, &pool_report};
   AddressAnnouncer announcer(network_report);
   std::unique_ptr<ControlServer> control;
   if (!options.sim_control_path.empty()) {

@@ -214,6 +214,13 @@ TEST_F(CipProvidersTest, ParameterWriter_QueueFull_NothingQueued) {
   }
   EXPECT_EQ(writer_->Enqueue(distinct).code(), base::StatusCode::kResourceExhausted);
   EXPECT_EQ(writer_->pending(), 1u);
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{1, ParameterWriter::kMaxQueued, 1, 1}));
+  distinct.pop_back();  // 31 new ones and the one queued: exactly full
+  EXPECT_TRUE(writer_->Enqueue(distinct).ok());
+  constexpr std::size_t kMax = ParameterWriter::kMaxQueued;
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
+  DrainWriter();
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{0, kMax, kMax, 1}));
 }
 
 TEST_F(CipProvidersTest, ParameterWriter_RefusedWriteCountedQueueGoesOn) {
