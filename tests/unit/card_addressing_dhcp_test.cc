@@ -267,56 +267,46 @@ TEST_F(DhcpAddressingTest, SwitchToManual_LeaseReleased) {
   EXPECT_EQ(LwipAddress(), 0xC0A8010Cu);
 }
 
-// The options hook itself, as lwIP calls it. lwIP 2.1.3's dhcp_rebind passes DHCP_DISCOVER as the type of
-// its DHCPREQUEST (after adding the host name itself): the message's own option 53 is what counts.
-TEST(DhcpOptionsHookTest, TypeFromTheMessage_NoSecondHostNameInARebindingRequest) {
+// The options hook itself, as lwIP calls it: a message whose options so far are `head` (`length` bytes
+// of it used), a netif with host name `name`, the type lwIP says the message has.
+struct HookResult {
+  Bytes options;
+  u16_t length = 0;
+};
+HookResult RunHook(const std::string& name, const Bytes& head, std::size_t length, u8_t given_type) {
   netif nif{};
-  char name[] = "DRIVE7";
-  nif.hostname = name;
+  nif.hostname = name.c_str();
   dhcp_msg msg{};
-  const Bytes head = {53, 1, kRequest, 12, 6, 'D', 'R', 'I', 'V', 'E', '7'};
   std::copy(head.begin(), head.end(), msg.options);
-  u16_t length = static_cast<u16_t>(head.size());
-  ipe_dhcp_append_options(&nif, DHCP_DISCOVER, &msg, &length);
-  const Bytes expected_tail = {61, 7, 0, 'D', 'R', 'I', 'V', 'E', '7'};
-  ASSERT_EQ(length, head.size() + expected_tail.size());
-  EXPECT_EQ(Bytes(msg.options + head.size(), msg.options + length), expected_tail);
+  auto used = static_cast<u16_t>(length);
+  ipe_dhcp_append_options(&nif, given_type, &msg, &used);
+  return {Bytes(msg.options, msg.options + used), used};
+}
+
+// lwIP 2.1.3's dhcp_rebind passes DHCP_DISCOVER as the type of its DHCPREQUEST (after adding the host name
+// itself): the message's own option 53 is what counts.
+TEST(DhcpOptionsHookTest, TypeFromTheMessage_NoSecondHostNameInARebindingRequest) {
+  const Bytes head = {53, 1, kRequest, 12, 6, 'D', 'R', 'I', 'V', 'E', '7'};
+  Bytes expected = head;
+  const Bytes client_id = {61, 7, 0, 'D', 'R', 'I', 'V', 'E', '7'};
+  expected.insert(expected.end(), client_id.begin(), client_id.end());
+  EXPECT_EQ(RunHook("DRIVE7", head, head.size(), DHCP_DISCOVER).options, expected);
 }
 
 TEST(DhcpOptionsHookTest, DiscoverGetsHostNameAndClientId_RequestOnlyClientId) {
-  netif nif{};
-  char name[] = "AB";
-  nif.hostname = name;
-  dhcp_msg msg{};
-  msg.options[0] = 53;
-  msg.options[1] = 1;
-  msg.options[2] = kDiscover;
-  u16_t length = 3;
-  ipe_dhcp_append_options(&nif, DHCP_DISCOVER, &msg, &length);
-  EXPECT_EQ(Bytes(msg.options, msg.options + length), (Bytes{53, 1, 1, 12, 2, 'A', 'B', 61, 3, 0, 'A', 'B'}));
-
-  msg.options[2] = kRequest;
-  length = 3;
-  ipe_dhcp_append_options(&nif, DHCP_REQUEST, &msg, &length);
-  EXPECT_EQ(Bytes(msg.options, msg.options + length), (Bytes{53, 1, 3, 61, 3, 0, 'A', 'B'}));
+  EXPECT_EQ(RunHook("AB", {53, 1, kDiscover}, 3, DHCP_DISCOVER).options,
+            (Bytes{53, 1, 1, 12, 2, 'A', 'B', 61, 3, 0, 'A', 'B'}));
+  EXPECT_EQ(RunHook("AB", {53, 1, kRequest}, 3, DHCP_REQUEST).options, (Bytes{53, 1, 3, 61, 3, 0, 'A', 'B'}));
+  EXPECT_EQ(RunHook("", {53, 1, kDiscover}, 3, DHCP_DISCOVER).options, (Bytes{53, 1, 1}));
 }
 
 TEST(DhcpOptionsHookTest, NoRoomForOptionAndEnd_LeftOut) {
-  netif nif{};
-  char name[] = "ABCDEFGHIJKLMNOP";
-  nif.hostname = name;
-  dhcp_msg msg{};
-  msg.options[0] = 53;
-  msg.options[1] = 1;
-  msg.options[2] = kRequest;
+  const std::string name = "ABCDEFGHIJKLMNOP";
   // 19 bytes of option 61 plus the end option need 20: one byte short.
-  u16_t length = static_cast<u16_t>(DHCP_OPTIONS_LEN - 19);
-  ipe_dhcp_append_options(&nif, DHCP_REQUEST, &msg, &length);
-  EXPECT_EQ(length, DHCP_OPTIONS_LEN - 19);
-  length = static_cast<u16_t>(DHCP_OPTIONS_LEN - 20);
-  ipe_dhcp_append_options(&nif, DHCP_REQUEST, &msg, &length);
-  EXPECT_EQ(length, DHCP_OPTIONS_LEN - 1);
-  EXPECT_EQ(msg.options[DHCP_OPTIONS_LEN - 20], 61);
+  EXPECT_EQ(RunHook(name, {53, 1, kRequest}, DHCP_OPTIONS_LEN - 19, DHCP_REQUEST).length, DHCP_OPTIONS_LEN - 19);
+  const HookResult fits = RunHook(name, {53, 1, kRequest}, DHCP_OPTIONS_LEN - 20, DHCP_REQUEST);
+  EXPECT_EQ(fits.length, DHCP_OPTIONS_LEN - 1);
+  EXPECT_EQ(fits.options[DHCP_OPTIONS_LEN - 20], 61);
 }
 
 }  // namespace

@@ -85,26 +85,38 @@ inline std::uint16_t FoldComplement(std::uint32_t sum) {
   return static_cast<std::uint16_t>(~sum);
 }
 
-// Ethernet + IPv4 (20-byte header, checksum set) + UDP (checksum over the pseudo-header set).
+// Ethernet + IPv4 (20-byte header without options, checksum set) around `payload`.
+inline Bytes Ipv4FrameBytes(const hal::MacAddress& destination, const hal::MacAddress& source, std::uint32_t src_ip,
+                            std::uint32_t dst_ip, std::uint8_t protocol, std::span<const std::uint8_t> payload) {
+  Bytes ip;
+  ip.push_back(0x45);
+  ip.push_back(0);
+  Put16(ip, static_cast<std::uint16_t>(20 + payload.size()));
+  Put16(ip, 0x1234);  // identification
+  Put16(ip, 0);       // no fragmentation
+  ip.push_back(64);   // TTL
+  ip.push_back(protocol);
+  Put16(ip, 0);  // checksum, below
+  Put32(ip, src_ip);
+  Put32(ip, dst_ip);
+  const std::uint16_t checksum = FoldComplement(OnesSum(ip));
+  ip[10] = static_cast<std::uint8_t>(checksum >> 8);
+  ip[11] = static_cast<std::uint8_t>(checksum);
+
+  Bytes f;
+  PutMac(f, destination);
+  PutMac(f, source);
+  Put16(f, 0x0800);
+  f.insert(f.end(), ip.begin(), ip.end());
+  f.insert(f.end(), payload.begin(), payload.end());
+  return f;
+}
+
+// Ethernet + IPv4 + UDP (checksum over the pseudo-header set).
 inline Bytes UdpFrameBytes(const hal::MacAddress& destination, const hal::MacAddress& source, std::uint32_t src_ip,
                            std::uint32_t dst_ip, std::uint16_t src_port, std::uint16_t dst_port,
                            std::span<const std::uint8_t> payload) {
   const auto udp_length = static_cast<std::uint16_t>(8 + payload.size());
-  Bytes ip;
-  ip.push_back(0x45);
-  ip.push_back(0);
-  Put16(ip, static_cast<std::uint16_t>(20 + udp_length));
-  Put16(ip, 0x1234);  // identification
-  Put16(ip, 0);       // no fragmentation
-  ip.push_back(64);   // TTL
-  ip.push_back(17);   // UDP
-  Put16(ip, 0);       // checksum, below
-  Put32(ip, src_ip);
-  Put32(ip, dst_ip);
-  const std::uint16_t ip_checksum = FoldComplement(OnesSum(ip));
-  ip[10] = static_cast<std::uint8_t>(ip_checksum >> 8);
-  ip[11] = static_cast<std::uint8_t>(ip_checksum);
-
   Bytes udp;
   Put16(udp, src_port);
   Put16(udp, dst_port);
@@ -116,18 +128,11 @@ inline Bytes UdpFrameBytes(const hal::MacAddress& destination, const hal::MacAdd
   Put32(pseudo, dst_ip);
   Put16(pseudo, 17);
   Put16(pseudo, udp_length);
-  std::uint16_t udp_checksum = FoldComplement(OnesSum(udp, OnesSum(pseudo)));
-  if (udp_checksum == 0) udp_checksum = 0xFFFF;
-  udp[6] = static_cast<std::uint8_t>(udp_checksum >> 8);
-  udp[7] = static_cast<std::uint8_t>(udp_checksum);
-
-  Bytes f;
-  PutMac(f, destination);
-  PutMac(f, source);
-  Put16(f, 0x0800);
-  f.insert(f.end(), ip.begin(), ip.end());
-  f.insert(f.end(), udp.begin(), udp.end());
-  return f;
+  std::uint16_t checksum = FoldComplement(OnesSum(udp, OnesSum(pseudo)));
+  if (checksum == 0) checksum = 0xFFFF;
+  udp[6] = static_cast<std::uint8_t>(checksum >> 8);
+  udp[7] = static_cast<std::uint8_t>(checksum);
+  return Ipv4FrameBytes(destination, source, src_ip, dst_ip, 17, udp);
 }
 
 // A UDP datagram the card sent, taken apart (IPv4 header without options).

@@ -36,19 +36,7 @@ Bytes EchoRequest(const hal::MacAddress& destination, const hal::MacAddress& sou
   const std::uint16_t icmp_checksum = FoldComplement(OnesSum(icmp));
   icmp[2] = static_cast<std::uint8_t>(icmp_checksum >> 8);
   icmp[3] = static_cast<std::uint8_t>(icmp_checksum);
-  Bytes ip = {0x45, 0, 0, static_cast<std::uint8_t>(20 + icmp.size()), 0, 1, 0, 0, 64, 1, 0, 0};
-  Put32(ip, src_ip);
-  Put32(ip, dst_ip);
-  const std::uint16_t ip_checksum = FoldComplement(OnesSum(ip));
-  ip[10] = static_cast<std::uint8_t>(ip_checksum >> 8);
-  ip[11] = static_cast<std::uint8_t>(ip_checksum);
-  Bytes f;
-  PutMac(f, destination);
-  PutMac(f, source);
-  Put16(f, 0x0800);
-  f.insert(f.end(), ip.begin(), ip.end());
-  f.insert(f.end(), icmp.begin(), icmp.end());
-  return f;
+  return Ipv4FrameBytes(destination, source, src_ip, dst_ip, 1, icmp);
 }
 
 bool IsEchoReplyTo(const Bytes& f, const hal::MacAddress& destination) {
