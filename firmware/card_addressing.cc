@@ -114,6 +114,8 @@ void CardAddressing::StopAll() {
 
 void CardAddressing::Restart(hal::Micros now) {
   StopAll();
+  acd_enabled_ = acd_selected_;
+  acd_ran_ = false;
   netif& nif = netif_.lwip_netif();
   // The device name is the DHCP host name (and client identifier); an empty one sends neither.
   netif_set_hostname(&nif, plan_.host_name[0] != '\0' ? plan_.host_name.data() : nullptr);
@@ -135,7 +137,10 @@ void CardAddressing::Restart(hal::Micros now) {
 void CardAddressing::UseAddress(const Ipv4Config& config, hal::Micros now) {
   target_ = config;
   target_set_ = true;
-  if (acd_enabled_) acd_.Start(config.address, now);
+  if (acd_enabled_) {
+    acd_.Start(config.address, now);
+    acd_ran_ = true;
+  }
   PollManualOrBootp();
 }
 
@@ -268,7 +273,10 @@ void CardAddressing::PollDhcp(hal::Micros now) {
     if (!target_set_ || target_.address != leased.address) {
       target_ = leased;
       target_set_ = true;
-      if (acd_enabled_) acd_.Claim(leased.address, now);
+      if (acd_enabled_) {
+        acd_.Claim(leased.address, now);
+        acd_ran_ = true;
+      }
     }
   } else if (target_set_) {
     // The lease ended (not renewed): lwIP removed the address and looks for a new one.
@@ -290,7 +298,13 @@ void CardAddressing::PollDhcp(hal::Micros now) {
 
 void CardAddressing::OnFrameToCard(std::span<const std::uint8_t> frame) {
   if (!target_set_ || !acd_enabled_) return;
-  if (acd_.OnFrame(frame, clock_.NowMicros()) != net::AcdEvent::kNone) ++counters_.acd_conflicts;
+  const hal::Micros now = clock_.NowMicros();
+  const net::AcdEvent event = acd_.OnFrame(frame, now);
+  if (event == net::AcdEvent::kNone) return;
+  ++counters_.acd_conflicts;
+  // A yielded address leaves lwIP before lwIP reads this very frame (RFC 5227 §2.4: stop using it at
+  // once); otherwise lwIP would still answer the other host's ARP for it.
+  if (event == net::AcdEvent::kYielded) Poll(now);
 }
 
 void CardAddressing::OnPortLinkUp(hal::PortId /*port*/) {

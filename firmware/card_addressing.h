@@ -81,7 +81,7 @@ class CardAddressing final : public Service, public ConfigurableService, public 
 
   // TCP/IP attribute 10 as stored; applied at the next restart of the addressing (set it before the first
   // configuration load).
-  void SetAcdEnabled(bool enabled) { acd_enabled_ = enabled; }
+  void SetAcdEnabled(bool enabled) { acd_selected_ = enabled; }
 
   base::Status Configure(const drive_link::CardConfig& config) override;
   void Poll(hal::Micros now) override;
@@ -98,7 +98,8 @@ class CardAddressing final : public Service, public ConfigurableService, public 
   Ipv4Config active() const;
   bool has_address() const { return active().address != 0; }
   bool acquiring() const { return phase() == AddressPhase::kAcquiring; }
-  bool duplicate_detected() const { return acd_.DuplicateDetected(); }
+  // A conflict found since the last restart (one found for the plan before is not this plan's).
+  bool duplicate_detected() const { return acd_ran_ && acd_.DuplicateDetected(); }
   const net::AcdConflictRecord& last_conflict() const { return acd_.LastConflict(); }
   void ClearLastConflict() { acd_.ClearLastConflict(); }
   const AddressingCounters& counters() const { return counters_; }
@@ -127,7 +128,9 @@ class CardAddressing final : public Service, public ConfigurableService, public 
 
   AddressingPlan plan_;
   bool configured_ = false;
-  bool acd_enabled_ = true;
+  bool acd_selected_ = true;  // as set (attribute 10)
+  bool acd_enabled_ = true;   // in force since the last restart
+  bool acd_ran_ = false;      // ACD started or claimed an address since the last restart
   Ipv4Config target_;      // the address ACD probes or guards (manual, BOOTP lease, DHCP lease)
   bool target_set_ = false;
   AddressingCounters counters_;
