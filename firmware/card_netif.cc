@@ -6,6 +6,7 @@
 #include "lwip/etharp.h"
 #include "lwip/igmp.h"
 #include "lwip/pbuf.h"
+#include "lwip/sys.h"
 #include "netif/ethernet.h"
 
 namespace firmware {
@@ -64,6 +65,14 @@ err_t CardNetif::LinkOutput(pbuf* p) {
   }
   const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
   const std::span<const std::uint8_t> bytes(frame.data(), length);
+  RefreshArpIdentity();
+  arp_guard_.NoteSent(bytes, sys_now());
+  // A frame no port took is lost like on a cable with no link; TCP retransmits, UDP does not care.
+  SendFrame(bytes);
+  return ERR_OK;
+}
+
+bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
   const bool group = IsGroupAddress(bytes);
   bool sent = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
@@ -77,17 +86,28 @@ err_t CardNetif::LinkOutput(pbuf* p) {
       ++traffic.out_discards;
     }
   }
-  if (!sent) {
-    ++counters_.tx_dropped;
-    // The frame is lost like on a cable with no link; TCP retransmits, UDP does not care.
-    return ERR_OK;
-  }
-  ++counters_.tx_frames;
-  return ERR_OK;
+  ++(sent ? counters_.tx_frames : counters_.tx_dropped);
+  return sent;
+}
+
+// The guard follows the address in use (it may change at run time: BOOTP, DHCP, a new configuration).
+void CardNetif::RefreshArpIdentity() {
+  std::array<std::uint8_t, 6> mac{};
+  std::memcpy(mac.data(), netif_.hwaddr, mac.size());
+  arp_guard_.SetIdentity(mac, lwip_ntohl(ip4_addr_get_u32(netif_ip4_addr(&netif_))));
+}
+
+bool CardNetif::Has(std::uint32_t address) const {
+  const ip4_addr_t wanted = ToLwip(address);
+  eth_addr* mac = nullptr;
+  const ip4_addr_t* found = nullptr;
+  // etharp_find_addr does not change the netif; its signature predates const.
+  return etharp_find_addr(const_cast<netif*>(&netif_), &wanted, &mac, &found) >= 0;
 }
 
 std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
   std::array<std::uint8_t, hal::kMaxFrameBytes> frame;
+  RefreshArpIdentity();
   std::size_t taken = 0;
   while (taken < max_frames) {
     const base::Result<hal::ReceivedFrame> received = port_.Receive(frame);
@@ -99,7 +119,14 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
     }
     const auto length = static_cast<u16_t>(received->length);
     PortTraffic& traffic = traffic_[hal::PortIndex(received->port)];
-    ++(IsGroupAddress(std::span<const std::uint8_t>(frame.data(), length)) ? traffic.in_nucast : traffic.in_ucast);
+    const std::span<const std::uint8_t> bytes(frame.data(), length);
+    ++(IsGroupAddress(bytes) ? traffic.in_nucast : traffic.in_ucast);
+    const ArpGuard::Verdict verdict = arp_guard_.Inspect(bytes, *this, sys_now());
+    if (verdict == ArpGuard::Verdict::kAnswer) {
+      ++counters_.rx_frames;  // taken in, as lwIP would have: only its answer comes from the guard
+      SendFrame(arp_guard_.reply());
+    }
+    if (verdict != ArpGuard::Verdict::kPass) continue;
     pbuf* p = pbuf_alloc(PBUF_RAW, length, PBUF_POOL);
     if (p == nullptr) {
       ++counters_.rx_dropped_no_pbuf;

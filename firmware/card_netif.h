@@ -8,12 +8,17 @@
 // Buffer ownership: a received frame is copied into a PBUF_POOL chain; if lwIP's input function does
 // not take it (returns != ERR_OK) the pbuf is freed here. Outgoing pbufs belong to lwIP: linkoutput
 // only copies them into the port.
+//
+// ARP: every received frame passes the ArpGuard first (arp_guard.h), which keeps strangers out of lwIP's
+// ARP cache (it answers their requests itself and drops replies nobody asked for).
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
+#include "arp_guard.h"
 #include "hal/frame_port.h"
 #include "lwip/netif.h"
 
@@ -26,7 +31,7 @@ struct Ipv4Config {
 };
 
 struct NetifCounters {
-  std::uint64_t rx_frames = 0;
+  std::uint64_t rx_frames = 0;           // handed to lwIP, or ARP requests the ArpGuard answered
   std::uint64_t rx_dropped_no_pbuf = 0;  // PBUF_POOL empty: frame dropped as a MAC with a full ring would
   std::uint64_t rx_port_errors = 0;      // the port reported an oversize/runt frame
   std::uint64_t tx_frames = 0;           // frames handed to at least one port
@@ -45,7 +50,7 @@ struct PortTraffic {
   std::uint64_t out_discards = 0;
 };
 
-class CardNetif {
+class CardNetif final : private ArpCacheQuery {
  public:
   explicit CardNetif(hal::FramePort& port) : port_(port) {}
   ~CardNetif();
@@ -65,6 +70,7 @@ class CardNetif {
   bool link_up() const;
   const NetifCounters& counters() const { return counters_; }
   const PortTraffic& traffic(hal::PortId port) const { return traffic_[hal::PortIndex(port)]; }
+  const ArpGuardCounters& arp_guard_counters() const { return arp_guard_.counters(); }
   netif& lwip_netif() { return netif_; }
   hal::FramePort& port() { return port_; }
 
@@ -72,12 +78,17 @@ class CardNetif {
   static err_t InitCallback(netif* nif);
   static err_t LinkOutputCallback(netif* nif, pbuf* p);
   err_t LinkOutput(pbuf* p);
+  // Sends one frame on every port with link; false when no port took it.
+  bool SendFrame(std::span<const std::uint8_t> bytes);
+  void RefreshArpIdentity();
+  bool Has(std::uint32_t address) const override;  // ArpCacheQuery: a stable lwIP ARP entry
 
   hal::FramePort& port_;
   netif netif_{};
   bool added_ = false;
   NetifCounters counters_;
   std::array<PortTraffic, hal::kMaxPorts> traffic_{};
+  ArpGuard arp_guard_;
 };
 
 }  // namespace firmware
