@@ -15,13 +15,16 @@
 //
 // So the cache holds only hosts the card itself has talked to: lwIP adds an entry when it sends to a host
 // (etharp_query), which a host that asked for the card does at once when it opens a connection (one extra
-// ARP exchange on its first packet). Device-path code: no lwIP here, fixed-size state.
+// ARP exchange on its first packet). Frames are read and written with net/arp.h's codec. Device-path code:
+// no lwIP here, fixed-size state.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+
+#include "net/arp.h"
 
 namespace firmware {
 
@@ -44,7 +47,6 @@ class ArpGuard {
   // Addresses the card may be waiting for at once; beyond, the oldest is forgotten (its reply is then
   // dropped, and lwIP asks again a second later).
   static constexpr std::size_t kMaxAwaited = 8;
-  static constexpr std::size_t kArpFrameBytes = 42;  // Ethernet header + ARP for IPv4 over Ethernet
 
   enum class Verdict : std::uint8_t {
     kPass,    // hand the frame to lwIP
@@ -53,12 +55,12 @@ class ArpGuard {
   };
 
   // The card's own addresses; address in host byte order (0 while it has none: every ARP frame passes).
-  void SetIdentity(const std::array<std::uint8_t, 6>& mac, std::uint32_t address);
+  void SetIdentity(const net::MacAddress& mac, net::Ipv4Address address);
 
   // A received frame (any type: frames other than ARP for IPv4 over Ethernet pass). Times are lwIP's
   // sys_now() milliseconds, compared modulo 2^32 (the clock wraps after 49 days).
   Verdict Inspect(std::span<const std::uint8_t> frame, const ArpCacheQuery& cache, std::uint32_t now_ms);
-  // The answer of the last kAnswer verdict (kArpFrameBytes).
+  // The answer of the last kAnswer verdict (net::kArpFrameSize bytes).
   std::span<const std::uint8_t> reply() const { return reply_; }
   // A frame the card sends: its own ARP requests are remembered as awaited.
   void NoteSent(std::span<const std::uint8_t> frame, std::uint32_t now_ms);
@@ -72,10 +74,10 @@ class ArpGuard {
   };
   bool IsAwaited(std::uint32_t address, std::uint32_t now_ms) const;
 
-  std::array<std::uint8_t, 6> mac_{};
-  std::uint32_t address_ = 0;
+  net::MacAddress mac_{};
+  net::Ipv4Address address_ = 0;
   std::array<Awaited, kMaxAwaited> awaited_{};
-  std::array<std::uint8_t, kArpFrameBytes> reply_{};
+  net::ArpFrame reply_{};
   ArpGuardCounters counters_;
 };
 

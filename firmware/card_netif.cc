@@ -92,7 +92,7 @@ bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
 
 // The guard follows the address in use (it may change at run time: BOOTP, DHCP, a new configuration).
 void CardNetif::RefreshArpIdentity() {
-  std::array<std::uint8_t, 6> mac{};
+  net::MacAddress mac{};
   std::memcpy(mac.data(), netif_.hwaddr, mac.size());
   arp_guard_.SetIdentity(mac, lwip_ntohl(ip4_addr_get_u32(netif_ip4_addr(&netif_))));
 }
