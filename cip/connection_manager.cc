@@ -153,7 +153,7 @@ ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, Byte
   RequestContext& context = service.context != nullptr ? *service.context : local_context;
   Opening opening;
   opening.request = &request;
-  if (const std::optional<ConnectionFailure> failure = Validate(request, opening)) {
+  if (const std::optional<ConnectionFailure> failure = Validate(request, context, opening)) {
     NoteExhausted(opening);
     return RejectOpen(*failure, request.triad, reply);
   }
@@ -166,7 +166,7 @@ ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, Byte
 }
 
 std::optional<ConnectionFailure> ConnectionManager::Validate(const ForwardOpenRequest& request,
-                                                             Opening& opening) const {
+                                                             const RequestContext& context, Opening& opening) const {
   using F = ConnectionFailure;
   if (request.o_to_t.type == ConnectionType::kNull && request.t_to_o.type == ConnectionType::kNull) {
     return F::Extended(kExtendedNullForwardOpen);
@@ -205,12 +205,13 @@ std::optional<ConnectionFailure> ConnectionManager::Validate(const ForwardOpenRe
   }
   if (const std::optional<F> rpi = CheckRpi(request, options_.min_rpi, options_.max_rpi)) return rpi;
   if (class1) {
-    if (const std::optional<F> io = ValidateIo(request, opening)) return io;
+    if (const std::optional<F> io = ValidateIo(request, context, opening)) return io;
   }
   return CheckCapacity(transport.transport_class, opening);
 }
 
 std::optional<ConnectionFailure> ConnectionManager::ValidateIo(const ForwardOpenRequest& request,
+                                                               const RequestContext& context,
                                                                Opening& opening) const {
   using F = ConnectionFailure;
   const ConnectionPath& path = opening.path;
@@ -242,7 +243,10 @@ std::optional<ConnectionFailure> ConnectionManager::ValidateIo(const ForwardOpen
   }
 
   const IoPoints& points = opening.points;
-  if (spec.kind == IoConnectionKind::kExclusiveOwner && IsOwned(points.consumed)) {
+  // One originator owns the drive: an exclusive owner of another output from another IP address would
+  // be a second master of the same motor (docs/security.md "Exclusive-owner write lock").
+  if (spec.kind == IoConnectionKind::kExclusiveOwner &&
+      (IsOwned(points.consumed) || OwnedByAnotherOriginator(context.peer.address))) {
     return F::Extended(kExtendedOwnershipConflict);
   }
   if (spec.kind == IoConnectionKind::kListenOnly && !HasProducerOf(points.produced, false)) {
@@ -507,6 +511,13 @@ bool ConnectionManager::IsOwned(std::uint32_t consumed_point) const {
   return std::any_of(connections_.begin(), connections_.end(), [&](const Connection& c) {
     return c.open && c.transport_class == 1 && c.kind == IoConnectionKind::kExclusiveOwner &&
            c.points.consumed == consumed_point;
+  });
+}
+
+bool ConnectionManager::OwnedByAnotherOriginator(std::uint32_t originator_address) const {
+  return std::any_of(connections_.begin(), connections_.end(), [&](const Connection& c) {
+    return c.open && c.transport_class == 1 && c.kind == IoConnectionKind::kExclusiveOwner &&
+           c.originator_address != originator_address;
   });
 }
 

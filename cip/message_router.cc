@@ -134,6 +134,10 @@ ServiceStatus MessageRouter::Dispatch(const MessageRouterRequest& request, const
   service_request.path = path;
   service_request.data = request.data;
   service_request.context = &context;
+  if (guard_ != nullptr) {
+    const ServiceStatus admitted = guard_->Admit(service_request);
+    if (!admitted.ok()) return admitted;
+  }
   return object->Execute(service_request, reply);
 }
 

@@ -6,6 +6,7 @@
 #include "lwip/etharp.h"
 #include "lwip/igmp.h"
 #include "lwip/pbuf.h"
+#include "lwip/sys.h"
 #include "netif/ethernet.h"
 
 namespace firmware {
@@ -63,12 +64,11 @@ err_t CardNetif::LinkOutput(pbuf* p) {
     return ERR_BUF;
   }
   const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
-  if (!SendFrame(std::span<const std::uint8_t>(frame.data(), length))) {
-    ++counters_.tx_dropped;
-    // The frame is lost like on a cable with no link; TCP retransmits, UDP does not care.
-    return ERR_OK;
-  }
-  ++counters_.tx_frames;
+  const std::span<const std::uint8_t> bytes(frame.data(), length);
+  RefreshArpIdentity();
+  arp_guard_.NoteSent(bytes, sys_now());
+  // A frame no port took is lost like on a cable with no link; TCP retransmits, UDP does not care.
+  SendFrame(bytes);
   return ERR_OK;
 }
 
@@ -87,7 +87,23 @@ bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
       ++traffic.out_discards;
     }
   }
+  ++(sent ? counters_.tx_frames : counters_.tx_dropped);
   return sent;
+}
+
+// The guard follows the address in use (it changes at run time: ACD, BOOTP, DHCP, a new configuration).
+void CardNetif::RefreshArpIdentity() {
+  net::MacAddress mac{};
+  std::memcpy(mac.data(), netif_.hwaddr, mac.size());
+  arp_guard_.SetIdentity(mac, lwip_ntohl(ip4_addr_get_u32(netif_ip4_addr(&netif_))));
+}
+
+bool CardNetif::Has(std::uint32_t address) const {
+  const ip4_addr_t wanted = ToLwip(address);
+  eth_addr* mac = nullptr;
+  const ip4_addr_t* found = nullptr;
+  // etharp_find_addr does not change the netif; its signature predates const.
+  return etharp_find_addr(const_cast<netif*>(&netif_), &wanted, &mac, &found) >= 0;
 }
 
 void CardNetif::Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery) {
@@ -122,6 +138,13 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
     Forward(bytes, delivery);
     if (!delivery.to_card) continue;
     if (observer_ != nullptr) observer_->OnFrameToCard(bytes);
+    RefreshArpIdentity();  // the observer may have given the address up (ACD yield)
+    const ArpGuard::Verdict verdict = arp_guard_.Inspect(bytes, *this, sys_now());
+    if (verdict == ArpGuard::Verdict::kAnswer) {
+      ++counters_.rx_frames;  // taken in, as lwIP would have: only its answer comes from the guard
+      SendFrame(arp_guard_.reply());
+    }
+    if (verdict != ArpGuard::Verdict::kPass) continue;
     pbuf* p = pbuf_alloc(PBUF_RAW, length, PBUF_POOL);
     if (p == nullptr) {
       ++counters_.rx_dropped_no_pbuf;

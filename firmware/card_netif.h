@@ -7,6 +7,10 @@
 // or every port with link when it is unknown. Link: the netif's link is up while at least one port has
 // link; a port going down flushes the stations learned on it, one coming up is told to the observer.
 //
+// ARP: every frame for the card passes the ArpGuard (arp_guard.h) after the observer (ACD must see every
+// ARP frame, also those the guard drops) and before lwIP: the guard keeps strangers out of lwIP's ARP
+// cache (it answers their requests itself and drops replies nobody asked for).
+//
 // Buffer ownership: a received frame is copied into a PBUF_POOL chain; if lwIP's input function does
 // not take it (returns != ERR_OK) the pbuf is freed here. Outgoing pbufs belong to lwIP: linkoutput
 // only copies them into the port.
@@ -17,6 +21,7 @@
 #include <cstdint>
 #include <span>
 
+#include "arp_guard.h"
 #include "hal/frame_port.h"
 #include "lwip/netif.h"
 #include "net/frame_switch.h"
@@ -35,7 +40,7 @@ struct NetifCounters {
   std::uint64_t rx_frames = 0;
   std::uint64_t rx_dropped_no_pbuf = 0;  // PBUF_POOL empty: frame dropped as a MAC with a full ring would
   std::uint64_t rx_port_errors = 0;      // the port reported an oversize/runt frame
-  std::uint64_t tx_frames = 0;           // frames handed to at least one port
+  std::uint64_t tx_frames = 0;           // frames (lwIP's, ACD's, the ArpGuard's) handed to at least one port
   std::uint64_t tx_dropped = 0;          // no port with link, or every port refused the frame
 };
 
@@ -61,7 +66,7 @@ class NetifObserver {
   virtual void OnPortLinkUp(hal::PortId port) = 0;
 };
 
-class CardNetif {
+class CardNetif final : private ArpCacheQuery {
  public:
   explicit CardNetif(hal::FramePort& port) : port_(port), switch_(port.Mac(), port.PortCount()) {}
   ~CardNetif();
@@ -87,6 +92,7 @@ class CardNetif {
   bool link_up() const;
   const NetifCounters& counters() const { return counters_; }
   const PortTraffic& traffic(hal::PortId port) const { return traffic_[hal::PortIndex(port)]; }
+  const ArpGuardCounters& arp_guard_counters() const { return arp_guard_.counters(); }
   netif& lwip_netif() { return netif_; }
   hal::FramePort& port() { return port_; }
 
@@ -95,11 +101,14 @@ class CardNetif {
   static err_t LinkOutputCallback(netif* nif, pbuf* p);
   err_t LinkOutput(pbuf* p);
   void Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery);
+  void RefreshArpIdentity();
+  bool Has(std::uint32_t address) const override;  // ArpCacheQuery: a stable lwIP ARP entry
 
   hal::FramePort& port_;
   net::FrameSwitch switch_;
   NetifObserver* observer_ = nullptr;
   std::array<bool, hal::kMaxPorts> port_up_{};
+  ArpGuard arp_guard_;
   netif netif_{};
   bool added_ = false;
   NetifCounters counters_;

@@ -17,6 +17,7 @@ EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const Ether
       connections_(device_.router(), identity_, devices.random, options.connections),
       supervisor_(connections_, devices.proxy, devices.clock),
       ownership_(connections_),
+      control_lock_(connections_),
       drive_status_(devices.proxy),
       journal_(devices.proxy),
       runtime_({devices.proxy, devices.proxy, devices.proxy, drive_status_, ownership_}),
@@ -41,6 +42,7 @@ base::Status EtherNetIpCard::Start() {
     if (base::Status status = device_.objects().Register(*object); !status.ok()) return status;
   }
   device_.encapsulation().set_request_lifecycle(&journal_);
+  device_.router().set_guard(&control_lock_);
   connections_.set_io_application(&assemblies_);
   connections_.set_multicast_provider(&tcpip_);
   connections_.set_events(&supervisor_);

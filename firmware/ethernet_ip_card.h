@@ -19,6 +19,7 @@
 #include "cip/cip_device.h"
 #include "cip/connection_manager.h"
 #include "cip/drive/ac_dc_drive_object.h"
+#include "cip/drive/control_lock.h"
 #include "cip/drive/control_supervisor_object.h"
 #include "cip/drive/drive_access_journal.h"
 #include "cip/drive/drive_assemblies.h"
@@ -83,6 +84,7 @@ class EtherNetIpCard final : private DriveControlListener {
   const CipConnectionSupervisor& supervisor() const { return supervisor_; }
   const cip::drive::DriveAccessJournal& journal() const { return journal_; }
   const cip::drive::DriveAssemblies& assemblies() const { return assemblies_; }
+  const cip::drive::ControlLock& control_lock() const { return control_lock_; }
 
  private:
   // The drive status the Control Supervisor follows: FD01 from the cyclic exchange, unknown while the
@@ -119,6 +121,7 @@ class EtherNetIpCard final : private DriveControlListener {
   cip::ConnectionManager connections_;
   CipConnectionSupervisor supervisor_;
   cip::drive::ConnectionManagerOwnership ownership_;
+  cip::drive::ControlLock control_lock_;  // the exclusive-owner write lock (docs/security.md)
   ProxyDriveStatus drive_status_;
   cip::drive::DriveAccessJournal journal_;
   cip::drive::DriveProfileRuntime runtime_;

@@ -41,7 +41,8 @@ ExceptionCode CheckDriveRead(std::uint16_t first, std::uint16_t count) {
   return LastCommunicationNumber(first, count) > 0xFFFF ? ExceptionCode::kIllegalDataAddress : ExceptionCode::kNone;
 }
 
-ExceptionCode CheckDriveWrite(std::uint16_t first, std::uint16_t count, const drive_link::ScannerImage& scanner) {
+ExceptionCode CheckDriveWrite(std::uint16_t first, std::uint16_t count, const drive_link::ScannerImage& scanner,
+                              bool control_locked) {
   if (!drive_link::reg::HasDecimalLastDigit(first)) return ExceptionCode::kIllegalDataAddress;
   if (LastCommunicationNumber(first, count) > 0xFFFF) return ExceptionCode::kIllegalDataAddress;
   std::uint32_t number = first;
@@ -49,6 +50,7 @@ ExceptionCode CheckDriveWrite(std::uint16_t first, std::uint16_t count, const dr
     const auto n = static_cast<std::uint16_t>(number);
     if (drive_link::reg::IsMonitorNumber(n)) return ExceptionCode::kIllegalDataAddress;
     if (scanner.IsScannerTarget(n)) return ExceptionCode::kIllegalDataAddress;
+    if (control_locked && drive_link::reg::IsControlRegister(n)) return ExceptionCode::kIllegalDataAddress;
   }
   return ExceptionCode::kNone;
 }

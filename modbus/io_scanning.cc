@@ -3,6 +3,9 @@
 namespace modbus {
 namespace {
 
+// c600-c603 = 0.0.0.0: no master configured, any client may scan.
+constexpr Ipv4Address kAnyMaster{0, 0, 0, 0};
+
 bool InRange(std::uint16_t address, std::uint16_t count) {
   return static_cast<std::uint32_t>(address) + count <= kIoScanWordCount;
 }
@@ -38,11 +41,14 @@ void ReadInputWords(const drive_link::ScannerImage& scanner, std::uint16_t addre
 
 ExceptionCode IoScanningAccess(const drive_link::CardConfig& config, const Ipv4Address& peer) {
   if (!config.io_scanning) return ExceptionCode::kIllegalFunction;
-  constexpr Ipv4Address kAnyMaster{0, 0, 0, 0};
   if (config.modbus_master != kAnyMaster && config.modbus_master != peer) {
     return ExceptionCode::kIllegalFunction;
   }
   return ExceptionCode::kNone;
+}
+
+bool ControlLockedFor(const drive_link::CardConfig& config, const Ipv4Address& peer) {
+  return config.io_scanning && config.modbus_master != kAnyMaster && config.modbus_master != peer;
 }
 
 bool IsIoScanningWrite(const Request& request) { return IsWriteFunction(request.function); }

@@ -144,6 +144,8 @@ void AppendStats(const CardReport& report, std::string& out) {
   Line(out, "netif.rx_port_errors", n.rx_port_errors);
   Line(out, "netif.tx_frames", n.tx_frames);
   Line(out, "netif.tx_dropped", n.tx_dropped);
+  Line(out, "netif.arp_answered", report.netif.arp_guard_counters().answered);
+  Line(out, "netif.arp_dropped", report.netif.arp_guard_counters().dropped);
   AppendPorts(out, report.netif.port());
   AppendProto(out, "link", lwip_stats.link);
   AppendProto(out, "etharp", lwip_stats.etharp);

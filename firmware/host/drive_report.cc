@@ -60,6 +60,7 @@ void AppendCipStats(const firmware::EtherNetIpCard& card, std::string& out) {
   Line(out, "cip.loss_idle", l.idle_transitions);
   Line(out, "cip.losses", l.losses);
   Line(out, "cip.restores", l.restores);
+  Line(out, "cip.control_lock_refusals", card.control_lock().refusals());
   Line(out, "cip.journal_accesses", card.journal().accesses_started());
   Line(out, "cip.journal_completions", card.journal().completions());
   const firmware::IoCounters& io = card.io_service().counters();

@@ -123,12 +123,18 @@ TEST_F(CardNetifSwitchTest, EchoFromALearnedStation_AnsweredOutOfItsPortOnly) {
   Introduce(kStationA, kIpA, PortId::kRight);
   const PortTraffic left = netif_.traffic(PortId::kLeft);
   Pump(EchoRequest(kCardMac, kStationA, kIpA, kCardIp), PortId::kRight);
+  // The ArpGuard answered A's request without a cache entry, so lwIP asks for A first (broadcast: both
+  // ports); A's answer is awaited and reaches lwIP, which then sends the queued echo reply.
+  ASSERT_EQ(port_.sent().size(), 2u);
+  EXPECT_EQ(port_.sent()[0].bytes[0], 0xFF);
+  port_.sent().clear();
+  Pump(ArpFrameBytes(2, kCardMac, kStationA, kStationA, kIpA, kCardMac, kCardIp), PortId::kRight);
   ASSERT_EQ(port_.sent().size(), 1u);
   EXPECT_EQ(port_.sent()[0].port, PortId::kRight);
   EXPECT_TRUE(IsEchoReplyTo(port_.sent()[0].bytes, kStationA));
   EXPECT_EQ(netif_.traffic(PortId::kLeft).out_ucast, left.out_ucast);
   EXPECT_EQ(netif_.traffic(PortId::kLeft).forwarded, left.forwarded);
-  EXPECT_EQ(netif_.traffic(PortId::kRight).out_ucast, 2u);  // the ARP reply and the echo reply
+  EXPECT_EQ(netif_.traffic(PortId::kRight).out_ucast, 2u);  // the guard's ARP reply and the echo reply
 }
 
 TEST_F(CardNetifSwitchTest, ReservedGroupAddress_CardOnly) {

@@ -198,13 +198,13 @@ struct ConnectionCard {
     cm.set_events(&events);
   }
 
-  // Asks the message router as the encapsulation layer would for a request from kOriginator.
+  // Asks the message router as the encapsulation layer would for a request from `originator`.
   Bytes Ask(const Bytes& request) {
     Bytes reply(kMaxEncapsulationData);
     context = RequestContext{};
     context.now = now;
     context.session_handle = kSession;
-    context.peer = Ipv4Endpoint{kOriginator, 50000};
+    context.peer = Ipv4Endpoint{originator, 50000};
     reply.resize(card.cip.router().HandleUnconnected(request, context, reply));
     return reply;
   }
@@ -228,6 +228,7 @@ struct ConnectionCard {
   RecordingEvents events;
   ConnectionManager cm;
   RequestContext context;
+  std::uint32_t originator = kOriginator;  // the IP address requests come from
   hal::Micros now = 1000000;
   Ipv4Endpoint last_to;
 };

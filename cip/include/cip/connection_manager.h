@@ -109,6 +109,7 @@ class ConnectionManager final : public AttributeHandler,
   ExtendedDeviceStatus IoStatus() const override;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   bool IsOwned(std::uint32_t consumed_point) const override;
+  bool OwnedByAnotherOriginator(std::uint32_t originator_address) const override;
   // The open connections (at most out.size() of them, in table order); returns how many were written.
   std::size_t ListConnections(std::span<ConnectionInfo> out) const override;
   const ConnectionCounters& counters() const { return counters_; }
@@ -196,8 +197,10 @@ class ConnectionManager final : public AttributeHandler,
   ServiceStatus ForwardOpen(const ServiceRequest& request, ByteWriter& reply, bool large);
   ServiceStatus ForwardClose(const ServiceRequest& request, ByteWriter& reply);
   ServiceStatus RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad, ByteWriter& reply);
-  std::optional<ConnectionFailure> Validate(const ForwardOpenRequest& request, Opening& opening) const;
-  std::optional<ConnectionFailure> ValidateIo(const ForwardOpenRequest& request, Opening& opening) const;
+  std::optional<ConnectionFailure> Validate(const ForwardOpenRequest& request, const RequestContext& context,
+                                           Opening& opening) const;
+  std::optional<ConnectionFailure> ValidateIo(const ForwardOpenRequest& request, const RequestContext& context,
+                                             Opening& opening) const;
   std::optional<ConnectionFailure> CheckCapacity(std::uint8_t transport_class, Opening& opening) const;
   ForwardOpenSuccess Open(const Opening& opening, RequestContext& context);
   void Close(std::size_t index, CloseReason reason);

@@ -139,6 +139,9 @@ class ConnectionTable {
   virtual std::size_t ListConnections(std::span<ConnectionInfo> out) const = 0;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   virtual bool IsOwned(std::uint32_t consumed_point) const = 0;
+  // Whether an exclusive-owner connection opened from another IP address than `originator_address` is
+  // open: the drive then belongs to that originator (docs/security.md "Exclusive-owner write lock").
+  virtual bool OwnedByAnotherOriginator(std::uint32_t originator_address) const = 0;
   // The Identity status bits 4-7 the connections call for.
   virtual ExtendedDeviceStatus IoStatus() const = 0;
 };

@@ -53,9 +53,24 @@ base::Result<MessageRouterReply> DecodeMessageRouterReply(std::span<const std::u
 // Writes a complete reply with no data.
 void EncodeErrorReply(std::uint8_t request_service, const ServiceStatus& status, ByteWriter& out);
 
+// Decides whether the originator of a request may have it executed (the firmware's ControlLock,
+// docs/security.md "Exclusive-owner write lock"). The router asks after the class, instance, service and
+// member checks (0x05, 0x16, 0x08) and before the object looks at the attribute or the data, for every
+// request it dispatches: unconnected, class 3, and each member of a Multiple Service Packet or
+// Unconnected_Send.
+class RequestGuard {
+ public:
+  virtual ~RequestGuard() = default;
+  // Success to let the object execute the request, or the error to answer instead.
+  virtual ServiceStatus Admit(const ServiceRequest& request) = 0;
+};
+
 class MessageRouter final : public UnconnectedMessageHandler {
  public:
   explicit MessageRouter(ObjectRegistry& objects) : objects_(objects) {}
+
+  // nullptr (the default): every request is dispatched.
+  void set_guard(RequestGuard* guard) { guard_ = guard; }
 
   std::size_t HandleUnconnected(std::span<const std::uint8_t> request, RequestContext& context,
                                 std::span<std::uint8_t> reply) override {
@@ -75,6 +90,7 @@ class MessageRouter final : public UnconnectedMessageHandler {
                               std::span<std::uint8_t> reply, int depth);
 
   ObjectRegistry& objects_;
+  RequestGuard* guard_ = nullptr;
 };
 
 }  // namespace cip

@@ -214,7 +214,8 @@
 
 /* ARP_TABLE_SIZE: ARP cache entries: every TCP peer at the limits may be a different host
  * (Class 1 originators are the same scanners that hold the sessions), plus the gateway, the
- * DHCP server and spares. */
+ * DHCP server and spares. Only hosts the card talks to get an entry: firmware::ArpGuard keeps
+ * other senders out (lwIP would recycle the oldest entry for each of them). */
 #define ARP_TABLE_SIZE (IPE_TCP_CONNECTIONS + 4)
 
 /* ARP_QUEUEING: 0 = while a peer's MAC is unresolved only its most recent outgoing packet is kept

@@ -23,6 +23,7 @@ using drive_link::reg::kC103;
 using drive_link::reg::kC523;
 using drive_link::reg::kCmod;
 using drive_link::reg::kDec;
+using drive_link::reg::kF207;
 using drive_link::reg::kF856;
 using drive_link::reg::kF899;
 using drive_link::reg::kFa00;
@@ -58,7 +59,6 @@ inline constexpr std::uint16_t kF132 = 0x0132;
 inline constexpr std::uint16_t kF170 = 0x0170;
 inline constexpr std::uint16_t kF171 = 0x0171;
 inline constexpr std::uint16_t kF172 = 0x0172;
-inline constexpr std::uint16_t kF207 = 0x0207;
 inline constexpr std::uint16_t kF219 = 0x0219;
 inline constexpr std::uint16_t kF268 = 0x0268;
 inline constexpr std::uint16_t kF287 = 0x0287;  // f287-f294: preset speeds 8-15

@@ -15,6 +15,7 @@ inline constexpr std::uint16_t kAcc = 0x0009;
 inline constexpr std::uint16_t kDec = 0x0010;
 inline constexpr std::uint16_t kUl = 0x0012;
 inline constexpr std::uint16_t kVb = 0x0016;
+inline constexpr std::uint16_t kF207 = 0x0207;  // frequency mode 2 (chosen by input function FCHG)
 inline constexpr std::uint16_t kVlv = 0x0409;
 inline constexpr std::uint16_t kF601 = 0x0601;
 inline constexpr std::uint16_t kF856 = 0x0856;  // motor pole pairs
@@ -114,5 +115,15 @@ constexpr std::uint16_t CParameter(unsigned title) {
 
 // FCxx-FExx: monitors, read-only by nature. The card refuses writes to them without asking the inverter.
 constexpr bool IsMonitorNumber(std::uint16_t number) { return number >= 0xFC00 && number <= 0xFEFF; }
+
+// Control registers (docs/security.md "Control registers"): writing one commands the drive (the
+// communication command area FA00-FAFF: run, direction, frequency, outputs), chooses where its commands
+// come from (cmod, fmod, f207) or resets the option and the drive (f899). While a master holds the drive
+// (a Modbus IO scanning master c600-c603, an EtherNet/IP exclusive owner), the front ends refuse writes
+// to these from anybody else.
+constexpr bool IsControlRegister(std::uint16_t number) {
+  return (number >= 0xFA00 && number <= 0xFAFF) || number == kCmod || number == kFmod || number == kF207 ||
+         number == kF899;
+}
 
 }  // namespace drive_link::reg
