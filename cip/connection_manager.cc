@@ -154,6 +154,7 @@ ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, Byte
   Opening opening;
   opening.request = &request;
   if (const std::optional<ConnectionFailure> failure = Validate(request, context, opening)) {
+    NoteExhausted(opening);
     return RejectOpen(*failure, request.triad, reply);
   }
   if (opening.path.has_data && application_ != nullptr && request.transport.transport_class == 1) {
@@ -276,11 +277,15 @@ std::optional<ConnectionFailure> ConnectionManager::CheckCapacity(std::uint8_t t
                                                                   Opening& opening) const {
   using F = ConnectionFailure;
   if (transport_class == 3) {
-    const std::size_t used =
-        static_cast<std::size_t>(std::count(explicit_in_use_.begin(), explicit_in_use_.end(), true));
-    if (used >= options_.max_explicit_connections) return F::Extended(kExtendedTargetOutOfConnections);
+    if (ExplicitInUse() >= options_.max_explicit_connections) {
+      opening.exhausted = Opening::Exhausted::kExplicit;
+      return F::Extended(kExtendedTargetOutOfConnections);
+    }
   }
-  if (FindFree() == kNone) return F::Extended(kExtendedOutOfConnections);
+  if (FindFree() == kNone) {
+    opening.exhausted = Opening::Exhausted::kTable;
+    return F::Extended(kExtendedOutOfConnections);
+  }
   const ForwardOpenRequest& request = *opening.request;
   if (transport_class == 1 && request.t_to_o.type == ConnectionType::kMulticast && opening.shared_producer == kNone) {
     // A new multicast production needs a group of its own: the lowest index no producer uses.
@@ -293,7 +298,10 @@ std::optional<ConnectionFailure> ConnectionManager::CheckCapacity(std::uint8_t t
       opening.multicast_group = multicast_->MulticastGroup(index);
       break;
     }
-    if (opening.multicast_group == 0) return F::Extended(kExtendedOutOfConnections);
+    if (opening.multicast_group == 0) {
+      opening.exhausted = Opening::Exhausted::kMulticastGroups;
+      return F::Extended(kExtendedOutOfConnections);
+    }
   }
   return std::nullopt;
 }
@@ -360,6 +368,9 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
     }
   }
   connection.open = true;
+  table_marks_.NoteTaken(ActiveConnections());
+  if (connection.explicit_slot != kNone) explicit_marks_.NoteTaken(ExplicitInUse());
+  if (connection.producer != kNone) production_marks_.NoteTaken(ActiveProducers());
   NotifyChanged();
   return ForwardOpenSuccess{connection.o_to_t_id, connection.t_to_o_id, connection.triad, connection.o_to_t_api,
                             connection.t_to_o_api};
@@ -429,6 +440,41 @@ void ConnectionManager::ReleaseUnusedProducers() {
 
 void ConnectionManager::NotifyChanged() {
   if (events_ != nullptr) events_->OnConnectionsChanged();
+}
+
+// ---- Pools -------------------------------------------------------------------------------------------
+
+void ConnectionManager::NoteExhausted(const Opening& opening) {
+  switch (opening.exhausted) {
+    case Opening::Exhausted::kNone:
+      break;
+    case Opening::Exhausted::kTable:
+      table_marks_.NoteRefused();
+      break;
+    case Opening::Exhausted::kExplicit:
+      explicit_marks_.NoteRefused();
+      break;
+    case Opening::Exhausted::kMulticastGroups:
+      production_marks_.NoteRefused();
+      break;
+  }
+}
+
+std::size_t ConnectionManager::ExplicitInUse() const {
+  return static_cast<std::size_t>(std::count(explicit_in_use_.begin(), explicit_in_use_.end(), true));
+}
+
+std::size_t ConnectionManager::ActiveProducers() const {
+  return static_cast<std::size_t>(
+      std::count_if(producers_.begin(), producers_.end(), [](const Producer& p) { return p.active; }));
+}
+
+base::PoolStats ConnectionManager::explicit_pool() const {
+  return explicit_marks_.Stats(ExplicitInUse(), options_.max_explicit_connections);
+}
+
+base::PoolStats ConnectionManager::production_pool() const {
+  return production_marks_.Stats(ActiveProducers(), producers_.size());
 }
 
 // ---- Lookups -----------------------------------------------------------------------------------------

@@ -64,8 +64,10 @@ base::Result<TcpConnectionId> EncapsulationServer::OpenTcpConnection(Ipv4Endpoin
     connection.session_handle = 0;
     connection.last_activity = now;
     connection.assembler.Reset();
+    connection_marks_.NoteTaken(connection_count());
     return TcpConnectionId{static_cast<std::uint8_t>(i)};
   }
+  connection_marks_.NoteRefused();
   return base::ResourceExhausted();
 }
 
@@ -194,9 +196,11 @@ std::size_t EncapsulationServer::RegisterSession(Connection& connection, const E
     if (handle == 0) {
       reply.status = static_cast<std::uint32_t>(EncapStatus::kInsufficientMemory);
       reply.session_handle = 0;
+      session_marks_.NoteRefused();
     } else {
       connection.session_handle = handle;
       reply.session_handle = handle;
+      session_marks_.NoteTaken(session_count());
     }
   }
   ByteWriter out(tcp_reply_);
@@ -359,8 +363,10 @@ std::size_t EncapsulationServer::ScheduleListIdentity(const EncapsulationHeader&
     slot.request = request;
     slot.due = now + random_.NextU32() % (max_delay + 1);
     send_at = slot.due;
+    delayed_marks_.NoteTaken(delayed_count());
     return i + 1;
   }
+  delayed_marks_.NoteRefused();
   return 0;
 }
 
@@ -413,6 +419,11 @@ std::size_t EncapsulationServer::session_count() const {
     if (connection.open && connection.session_handle != 0) ++count;
   }
   return count;
+}
+
+std::size_t EncapsulationServer::delayed_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(delayed_.begin(), delayed_.end(), [](const DelayedReply& d) { return d.pending; }));
 }
 
 std::size_t EncapsulationServer::connection_count() const {

@@ -127,6 +127,9 @@ bool EpathReader::ReadLogical(std::uint8_t first, PathSegment& segment) {
       segment.value = in_.U16();
       return true;
     case k32Bit:
+      // CIP defines the 32-bit format for instance, member and connection point only; for a class or an
+      // attribute it is reserved (their IDs are 16-bit), so such a segment is refused like format 3.
+      if (type == kLogicalClass || type == kLogicalAttribute) return Fail(base::InvalidArgument());
       in_.Skip(1);  // pad
       segment.value = in_.U32();
       return true;

@@ -1,5 +1,7 @@
 // RegisterProxy: DriveRegisters, the on-demand accesses of the front ends (docs/drive-link.md, "Register
 // proxy"): local refusals, the pool, one access on the link at a time, error mapping, delivery from Poll.
+#include <algorithm>
+
 #include "drive_link/drive_registers.h"
 #include "drive_link/register_proxy.h"
 
@@ -77,6 +79,7 @@ base::Result<AccessToken> RegisterProxy::Accept(const Transaction& transaction, 
   }
   if (slot == nullptr) {
     ++counters_.pool_full;
+    access_marks_.NoteRefused();
     return base::ResourceExhausted();
   }
   *slot = Access{};
@@ -88,10 +91,16 @@ base::Result<AccessToken> RegisterProxy::Accept(const Transaction& transaction, 
   slot->transaction = transaction;
   slot->result.number = transaction.comm_number;
   ++counters_.accesses;
+  access_marks_.NoteTaken(AccessesInUse());
   // A local refusal is delivered on the next Poll like any result, never from inside Read/Write.
   if (local_refusal != AccessError::kNone) FinishAccess(*slot, local_refusal, 0);
   wake_ = true;
   return slot->token;
+}
+
+std::size_t RegisterProxy::AccessesInUse() const {
+  return static_cast<std::size_t>(std::count_if(accesses_.begin(), accesses_.end(),
+                                                [](const Access& a) { return a.state != Access::State::kFree; }));
 }
 
 void RegisterProxy::FinishAccess(Access& access, AccessError error, std::uint16_t value) {

@@ -67,17 +67,22 @@ err_t CardNetif::LinkOutput(pbuf* p) {
   const std::span<const std::uint8_t> bytes(frame.data(), length);
   RefreshArpIdentity();
   arp_guard_.NoteSent(bytes, sys_now());
-  // A frame no port took is lost like on a cable with no link; TCP retransmits, UDP does not care.
-  SendFrame(bytes);
+  if (!SendFrame(bytes)) {
+    ++counters_.tx_dropped;
+    // The frame is lost like on a cable with no link; TCP retransmits, UDP does not care.
+    return ERR_OK;
+  }
+  ++counters_.tx_frames;
   return ERR_OK;
 }
 
 bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
   const bool group = IsGroupAddress(bytes);
+  const std::array<bool, net::kSwitchPorts> out = switch_.Egress(bytes);
   bool sent = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
     const auto id = static_cast<hal::PortId>(i);
-    if (!port_.Link(id).up) continue;
+    if (!out[i] || !port_.Link(id).up) continue;
     PortTraffic& traffic = traffic_[i];
     if (port_.Transmit(id, bytes).ok()) {
       sent = true;
@@ -86,11 +91,10 @@ bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
       ++traffic.out_discards;
     }
   }
-  ++(sent ? counters_.tx_frames : counters_.tx_dropped);
   return sent;
 }
 
-// The guard follows the address in use (it may change at run time: BOOTP, DHCP, a new configuration).
+// The guard follows the address in use (it changes at run time: BOOTP, DHCP, ACD, a new configuration).
 void CardNetif::RefreshArpIdentity() {
   net::MacAddress mac{};
   std::memcpy(mac.data(), netif_.hwaddr, mac.size());
@@ -103,6 +107,19 @@ bool CardNetif::Has(std::uint32_t address) const {
   const ip4_addr_t* found = nullptr;
   // etharp_find_addr does not change the netif; its signature predates const.
   return etharp_find_addr(const_cast<netif*>(&netif_), &wanted, &mac, &found) >= 0;
+}
+
+void CardNetif::Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery) {
+  for (std::size_t i = 0; i < port_.PortCount(); ++i) {
+    const auto id = static_cast<hal::PortId>(i);
+    if (!delivery.to_port[i] || !port_.Link(id).up) continue;
+    PortTraffic& traffic = traffic_[i];
+    if (port_.Transmit(id, frame).ok()) {
+      ++traffic.forwarded;
+    } else {
+      ++traffic.out_discards;
+    }
+  }
 }
 
 std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
@@ -118,13 +135,18 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
       continue;
     }
     const auto length = static_cast<u16_t>(received->length);
-    PortTraffic& traffic = traffic_[hal::PortIndex(received->port)];
     const std::span<const std::uint8_t> bytes(frame.data(), length);
+    PortTraffic& traffic = traffic_[hal::PortIndex(received->port)];
     ++(IsGroupAddress(bytes) ? traffic.in_nucast : traffic.in_ucast);
+    const net::SwitchDelivery delivery = switch_.Ingress(bytes, hal::PortIndex(received->port));
+    Forward(bytes, delivery);
+    if (!delivery.to_card) continue;
+    if (observer_ != nullptr) observer_->OnFrameToCard(bytes);
+    // ACD has seen the frame; the ARP guard decides whether lwIP may learn from it (arp_guard.h).
     const ArpGuard::Verdict verdict = arp_guard_.Inspect(bytes, *this, sys_now());
     if (verdict == ArpGuard::Verdict::kAnswer) {
       ++counters_.rx_frames;  // taken in, as lwIP would have: only its answer comes from the guard
-      SendFrame(arp_guard_.reply());
+      ++(SendFrame(arp_guard_.reply()) ? counters_.tx_frames : counters_.tx_dropped);
     }
     if (verdict != ArpGuard::Verdict::kPass) continue;
     pbuf* p = pbuf_alloc(PBUF_RAW, length, PBUF_POOL);
@@ -147,7 +169,14 @@ bool CardNetif::link_up() const { return netif_is_link_up(&netif_); }
 bool CardNetif::SyncLinkState() {
   bool any_up = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
-    any_up = any_up || port_.Link(static_cast<hal::PortId>(i)).up;
+    const auto id = static_cast<hal::PortId>(i);
+    const bool up = port_.Link(id).up;
+    if (up != port_up_[i]) {
+      port_up_[i] = up;
+      if (!up) switch_.PortDown(i);
+      if (up && observer_ != nullptr) observer_->OnPortLinkUp(id);
+    }
+    any_up = any_up || up;
   }
   if (any_up == link_up()) return false;
   if (any_up) {

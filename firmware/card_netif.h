@@ -1,16 +1,19 @@
 // The card's one IP interface, bound to lwIP, on top of the two-port frame port.
 //
-// The card has one MAC and one IP address behind a two-port switch (L, R). Receive: frames from either
-// port go into lwIP through netif->input. Transmit: lwIP's frames go out on every port whose link is
-// up (a frame for an unknown destination floods, as a switch does; per-port MAC learning is part of
-// the switch work). Link: the netif's link is up while at least one port has link.
+// The card has one MAC and one IP address behind its internal switch (net::FrameSwitch: the card, port
+// L, port R). Receive: the switch decides per frame; a frame for the card goes to the observer (ACD
+// reads ARP there) and then into lwIP through netif->input; a frame for another station passes to the
+// other port (daisy chain). Transmit: lwIP's frames go out of the port their destination was learned on,
+// or every port with link when it is unknown. Link: the netif's link is up while at least one port has
+// link; a port going down flushes the stations learned on it, one coming up is told to the observer.
 //
 // Buffer ownership: a received frame is copied into a PBUF_POOL chain; if lwIP's input function does
 // not take it (returns != ERR_OK) the pbuf is freed here. Outgoing pbufs belong to lwIP: linkoutput
 // only copies them into the port.
 //
-// ARP: every received frame passes the ArpGuard first (arp_guard.h), which keeps strangers out of lwIP's
-// ARP cache (it answers their requests itself and drops replies nobody asked for).
+// ARP: every frame for the card passes the ArpGuard after the observer and before lwIP (arp_guard.h),
+// which keeps strangers out of lwIP's ARP cache (it answers their requests itself and drops replies
+// nobody asked for).
 #pragma once
 
 #include <array>
@@ -21,6 +24,7 @@
 #include "arp_guard.h"
 #include "hal/frame_port.h"
 #include "lwip/netif.h"
+#include "net/frame_switch.h"
 
 namespace firmware {
 
@@ -28,6 +32,8 @@ struct Ipv4Config {
   std::uint32_t address = 0;  // host byte order, e.g. 0x0A00020F for 10.0.2.15
   std::uint32_t netmask = 0;
   std::uint32_t gateway = 0;
+
+  bool operator==(const Ipv4Config&) const = default;
 };
 
 struct NetifCounters {
@@ -48,11 +54,21 @@ struct PortTraffic {
   std::uint64_t out_ucast = 0;
   std::uint64_t out_nucast = 0;
   std::uint64_t out_discards = 0;
+  std::uint64_t forwarded = 0;  // frames passed out of this port for other stations (daisy chain)
+};
+
+// Sees the frames the switch delivers to the card, before the ArpGuard and lwIP do, and per-port link-up
+// edges. It only reads. (Address Conflict Detection, docs/network.md.)
+class NetifObserver {
+ public:
+  virtual ~NetifObserver() = default;
+  virtual void OnFrameToCard(std::span<const std::uint8_t> frame) = 0;
+  virtual void OnPortLinkUp(hal::PortId port) = 0;
 };
 
 class CardNetif final : private ArpCacheQuery {
  public:
-  explicit CardNetif(hal::FramePort& port) : port_(port) {}
+  explicit CardNetif(hal::FramePort& port) : port_(port), switch_(port.Mac(), port.PortCount()) {}
   ~CardNetif();
   CardNetif(const CardNetif&) = delete;
   CardNetif& operator=(const CardNetif&) = delete;
@@ -67,6 +83,12 @@ class CardNetif final : private ArpCacheQuery {
   // Brings the lwIP link state in line with the ports'. Returns true when it changed.
   bool SyncLinkState();
 
+  // At most one observer (null: none).
+  void SetObserver(NetifObserver* observer) { observer_ = observer; }
+  // Sends a frame the card builds itself (ACD's ARP probes) like lwIP's: by the switch's egress rule.
+  // False when no port took it.
+  bool SendFrame(std::span<const std::uint8_t> frame);
+
   bool link_up() const;
   const NetifCounters& counters() const { return counters_; }
   const PortTraffic& traffic(hal::PortId port) const { return traffic_[hal::PortIndex(port)]; }
@@ -78,12 +100,14 @@ class CardNetif final : private ArpCacheQuery {
   static err_t InitCallback(netif* nif);
   static err_t LinkOutputCallback(netif* nif, pbuf* p);
   err_t LinkOutput(pbuf* p);
-  // Sends one frame on every port with link; false when no port took it.
-  bool SendFrame(std::span<const std::uint8_t> bytes);
+  void Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery);
   void RefreshArpIdentity();
   bool Has(std::uint32_t address) const override;  // ArpCacheQuery: a stable lwIP ARP entry
 
   hal::FramePort& port_;
+  net::FrameSwitch switch_;
+  NetifObserver* observer_ = nullptr;
+  std::array<bool, hal::kMaxPorts> port_up_{};
   netif netif_{};
   bool added_ = false;
   NetifCounters counters_;

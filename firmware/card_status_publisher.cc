@@ -82,9 +82,14 @@ void CardStatusPublisher::ConfigureFrontEnds(bool only_pending) {
 drive_link::CardStatus CardStatusPublisher::CurrentStatus() {
   drive_link::CardStatus status;
   hal::FramePort& port = netif_.port();
+  bool carrier = false;
   for (std::size_t i = 0; i < status.port_rates.size(); ++i) {
     if (i < port.PortCount()) status.port_rates[i] = PortRateCode(port.Link(static_cast<hal::PortId>(i)));
+    carrier = carrier || status.port_rates[i] != 0;
   }
+  // c536 = 3 "loss of carrier" while no port has link; the proxy shows the last event (a loss report of
+  // the front ends may follow and replace it), and 0 again when a link comes back.
+  status.ethernet_error = carrier ? 0 : 3;
   status.mac = port.Mac();
   netif& nif = netif_.lwip_netif();
   status.ip = Octets(netif_ip4_addr(&nif));

@@ -1,7 +1,8 @@
 // Keeps what the card shows about itself current, in the inverter and in the front ends:
 //
-// - every kPublishInterval: the actual rates of the L/R ports (c502/c503), the MAC (c517-c522) and the
-//   address in use (c524-c535) go to the register proxy, which writes back what changed; the same values,
+// - every kPublishInterval: the actual rates of the L/R ports (c502/c503), the MAC (c517-c522), the
+//   address in use (c524-c535) and loss of carrier (c536 = 3 while no port has link) go to the register
+//   proxy, which writes back what changed; the same values,
 //   the drive-link state and c536 go to the Modbus server's option-board data (unit 251, FC 43);
 // - after each configuration load (start-up, f899 = 1, link recovery): the configuration goes to every
 //   front end (the Modbus and EtherNet/IP services open or close their ports by c500), and the drive's
@@ -45,7 +46,7 @@ class CardStatusPublisher final : public Service,
  public:
   static constexpr hal::Micros kPublishInterval = 100 * hal::kMicrosPerMilli;
 
-  static constexpr std::size_t kMaxFrontEnds = 8;
+  static constexpr std::size_t kMaxFrontEnds = 10;
 
   // At most kMaxFrontEnds front ends (more are ignored); `identity_sink` may be null.
   CardStatusPublisher(drive_link::RegisterProxy& proxy, modbus::Server& modbus_server,

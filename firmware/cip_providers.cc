@@ -70,9 +70,18 @@ cip::DeviceStatus CardIdentity::Status() const {
 
 // ---- CardTcpIp --------------------------------------------------------------------------------------
 
-CardTcpIp::CardTcpIp(CardNetif& netif, ParameterWriter& writer, hal::NvStore& store)
-    : netif_(netif), writer_(writer), store_(store) {
+CardTcpIp::CardTcpIp(CardNetif& netif, CardAddressing& addressing, ParameterWriter& writer, hal::NvStore& store)
+    : netif_(netif), addressing_(addressing), writer_(writer), store_(store) {
   LoadExtras();
+}
+
+cip::AcdConflict CardTcpIp::LastConflict() const {
+  const net::AcdConflictRecord& record = addressing_.last_conflict();
+  cip::AcdConflict conflict;
+  conflict.acd_activity = static_cast<std::uint8_t>(record.activity);
+  conflict.remote_mac = record.remote_mac;
+  conflict.arp_pdu = record.arp_pdu;
+  return conflict;
 }
 
 base::Status CardTcpIp::Configure(const drive_link::CardConfig& config) {

@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 
+#include "card_addressing.h"
 #include "card_netif.h"
 #include "cip/providers.h"
 #include "cip/io_connection.h"
@@ -57,16 +58,17 @@ class CardTcpIp final : public cip::TcpIpProvider,
                         public MulticastTtlSource,
                         public ConfigurableService {
  public:
-  CardTcpIp(CardNetif& netif, ParameterWriter& writer, hal::NvStore& store);
+  CardTcpIp(CardNetif& netif, CardAddressing& addressing, ParameterWriter& writer, hal::NvStore& store);
 
   // The inverter's part of the stored settings, from each configuration load.
   base::Status Configure(const drive_link::CardConfig& config) override;
 
   cip::InterfaceConfiguration ActiveConfiguration() const override;
   bool ConfigurationValid() const override;
-  bool AddressConflictDetected() const override { return false; }  // ACD: the addressing issue
-  cip::AcdConflict LastConflict() const override { return {}; }
-  void ClearLastConflict() override {}
+  // Status bit 6 and attribute 11 come from the card's ACD (docs/network.md "Address Conflict Detection").
+  bool AddressConflictDetected() const override { return addressing_.duplicate_detected(); }
+  cip::AcdConflict LastConflict() const override;
+  void ClearLastConflict() override { addressing_.ClearLastConflict(); }
   cip::TcpIpSettings StoredSettings() const override { return settings_; }
   base::Status StoreSettings(const cip::TcpIpSettings& settings) override;
 
@@ -79,6 +81,7 @@ class CardTcpIp final : public cip::TcpIpProvider,
   base::Status SaveExtras(const cip::TcpIpSettings& settings);
 
   CardNetif& netif_;
+  CardAddressing& addressing_;
   ParameterWriter& writer_;
   hal::NvStore& store_;
   cip::TcpIpSettings settings_;

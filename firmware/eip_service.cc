@@ -106,6 +106,7 @@ err_t EipService::Accept(tcp_pcb* pcb) {
                                                        clock_.NowMicros());
   if (!id.ok()) {
     ++counters_.refused;
+    slot_marks_.NoteRefused();
     tcp_abort(pcb);
     return ERR_ABRT;
   }
@@ -119,6 +120,7 @@ err_t EipService::Accept(tcp_pcb* pcb) {
   connection.pending = false;
   AttachTcpConnection(pcb, &connection, TcpSlotCallbacks<Connection>::kCallbacks, options_.keepalive);
   ++counters_.accepted;
+  slot_marks_.NoteTaken(SlotsHoldingPcb(connections_));
   return ERR_OK;
 }
 

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "cip/encapsulation_server.h"
 #include "configurable_service.h"
@@ -75,6 +76,9 @@ class EipService final : public Service, public ConfigurableService {
   hal::Micros NextDeadline() const override;
 
   const EipCounters& counters() const { return counters_; }
+  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: reset from
+  // the accept callback.
+  base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(connections_), connections_.size()); }
 
  private:
   struct Connection {
@@ -118,6 +122,7 @@ class EipService final : public Service, public ConfigurableService {
   std::array<Connection, cip::kMaxTcpConnections> connections_{};
   std::array<std::uint8_t, cip::kMaxEncapsulationMessage> datagram_{};  // one received datagram
   EipCounters counters_;
+  base::PoolWatermark slot_marks_;
 };
 
 }  // namespace firmware

@@ -11,7 +11,7 @@ cip::drive::DriveStatus EtherNetIpCard::ProxyDriveStatus::CurrentDriveStatus() c
 
 EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const EtherNetIpCardOptions& options)
     : identity_(devices.port, devices.proxy),
-      tcpip_(devices.netif, devices.writer, devices.store),
+      tcpip_(devices.netif, devices.addressing, devices.writer, devices.store),
       links_(devices.netif, devices.writer),
       device_({identity_, tcpip_, links_, devices.reset, devices.random}),
       connections_(device_.router(), identity_, devices.random, options.connections),

@@ -47,6 +47,7 @@ namespace firmware {
 struct EtherNetIpCardDevices {
   hal::FramePort& port;
   CardNetif& netif;
+  CardAddressing& addressing;
   drive_link::RegisterProxy& proxy;
   ParameterWriter& writer;
   hal::NvStore& store;
@@ -79,6 +80,7 @@ class EtherNetIpCard final : private DriveControlListener {
   const EipService& eip_service() const { return eip_; }
   const IoService& io_service() const { return io_; }
   const cip::ConnectionManager& connections() const { return connections_; }
+  const CardTcpIp& tcpip() const { return tcpip_; }
   const CipConnectionSupervisor& supervisor() const { return supervisor_; }
   const cip::drive::DriveAccessJournal& journal() const { return journal_; }
   const cip::drive::DriveAssemblies& assemblies() const { return assemblies_; }

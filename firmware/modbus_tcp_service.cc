@@ -74,6 +74,7 @@ err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
   if (!id.ok()) {
     // Every slot is taken: reset this one, the others are not touched.
     ++counters_.refused;
+    slot_marks_.NoteRefused();
     tcp_abort(pcb);
     return ERR_ABRT;
   }
@@ -81,6 +82,7 @@ err_t ModbusTcpService::Accept(tcp_pcb* pcb) {
   client = Client{this, pcb, *id, false};
   AttachTcpConnection(pcb, &client, TcpSlotCallbacks<Client>::kCallbacks, options_.keepalive);
   ++counters_.accepted;
+  slot_marks_.NoteTaken(SlotsHoldingPcb(clients_));
   return ERR_OK;
 }
 

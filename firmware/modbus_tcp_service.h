@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "configurable_service.h"
 #include "drive_link/card_config.h"
@@ -75,6 +76,9 @@ class ModbusTcpService final : public Service, public ConfigurableService {
   hal::Micros NextDeadline() const override;
 
   const ModbusTcpCounters& counters() const { return counters_; }
+  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: reset from
+  // the accept callback.
+  base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(clients_), clients_.size()); }
 
  private:
   struct Client {
@@ -105,6 +109,7 @@ class ModbusTcpService final : public Service, public ConfigurableService {
   tcp_pcb* listener_ = nullptr;
   std::array<Client, modbus::Server::kMaxClients> clients_{};
   ModbusTcpCounters counters_;
+  base::PoolWatermark slot_marks_;
 };
 
 }  // namespace firmware

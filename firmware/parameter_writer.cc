@@ -21,7 +21,10 @@ base::Status ParameterWriter::Enqueue(std::span<const ParameterValue> items) {
                                       [&](const ParameterValue& v) { return v.number == items[i].number; });
     if (!repeated && Find(items[i].number) == nullptr) ++needed;
   }
-  if (count_ + needed > queue_.size()) return base::ResourceExhausted();
+  if (count_ + needed > queue_.size()) {
+    queue_marks_.NoteRefused();
+    return base::ResourceExhausted();
+  }
   for (const ParameterValue& item : items) {
     if (ParameterValue* queued = Find(item.number)) {
       queued->value = item.value;
@@ -29,6 +32,7 @@ base::Status ParameterWriter::Enqueue(std::span<const ParameterValue> items) {
       queue_[count_++] = item;
     }
   }
+  queue_marks_.NoteTaken(count_);
   return base::OkStatus();
 }
 

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <span>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "drive_link/register_proxy.h"
 #include "event_loop.h"
@@ -43,6 +44,9 @@ class ParameterWriter final : public Service, private drive_link::AccessListener
   base::Status Enqueue(std::span<const ParameterValue> items);
   std::size_t pending() const { return count_ + (in_flight_ ? 1 : 0); }
   const ParameterWriterCounters& counters() const { return counters_; }
+  // The queue (docs/robustness.md "Exhaustion"), without the write on its way; refused: an Enqueue
+  // answered kResourceExhausted.
+  base::PoolStats queue_pool() const { return queue_marks_.Stats(count_, kMaxQueued); }
 
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override;
@@ -58,6 +62,7 @@ class ParameterWriter final : public Service, private drive_link::AccessListener
   drive_link::AccessToken token_ = drive_link::kNoAccess;
   hal::Micros retry_at_ = 0;
   ParameterWriterCounters counters_;
+  base::PoolWatermark queue_marks_;
 };
 
 }  // namespace firmware

@@ -3,6 +3,8 @@
 // up, and close with FIN or, without memory for the FIN, with RST.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "base/status.h"
@@ -80,6 +82,14 @@ struct TcpSlotCallbacks {
   }
   static constexpr TcpCallbacks kCallbacks{&OnRecv, &OnSent, &OnError, &OnPoll};
 };
+
+// The slots of a service's table that hold a PCB (its connection pool's `used`).
+template <typename Slot, std::size_t N>
+std::size_t SlotsHoldingPcb(const std::array<Slot, N>& slots) {
+  std::size_t count = 0;
+  for (const Slot& slot : slots) count += slot.pcb != nullptr ? 1 : 0;
+  return count;
+}
 
 // FIN after the data already queued; when lwIP has no memory for the FIN, RST instead and ERR_ABRT
 // (a callback must then return ERR_ABRT). The PCB must be detached first.

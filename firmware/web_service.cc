@@ -76,6 +76,7 @@ err_t WebService::Accept(tcp_pcb* pcb) {
   client = Client{this, pcb, *id, false};
   AttachTcpConnection(pcb, &client, TcpSlotCallbacks<Client>::kCallbacks, options_.keepalive);
   ++counters_.accepted;
+  slot_marks_.NoteTaken(SlotsHoldingPcb(clients_));
   return ERR_OK;
 }
 
@@ -83,6 +84,7 @@ err_t WebService::Accept(tcp_pcb* pcb) {
 // whatever the client still sends.
 err_t WebService::RefuseBusy(tcp_pcb* pcb) {
   ++counters_.refused_busy;
+  slot_marks_.NoteRefused();
   const std::span<const std::uint8_t> busy = web::HttpServer::BusyResponse();
   tcp_arg(pcb, nullptr);
   if (tcp_write(pcb, busy.data(), static_cast<u16_t>(busy.size()), 0) != ERR_OK) {

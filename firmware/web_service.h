@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "configurable_service.h"
 #include "drive_link/card_config.h"
@@ -62,6 +63,9 @@ class WebService final : public Service, public ConfigurableService {
   hal::Micros NextDeadline() const override;
 
   const WebServiceCounters& counters() const { return counters_; }
+  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: 503 and
+  // closed (counters().refused_busy; an evicted idle connection is not a refusal).
+  base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(clients_), clients_.size()); }
 
  private:
   struct Client {
@@ -89,6 +93,7 @@ class WebService final : public Service, public ConfigurableService {
   tcp_pcb* listener_ = nullptr;
   std::array<Client, web::kMaxHttpClients> clients_{};
   WebServiceCounters counters_;
+  base::PoolWatermark slot_marks_;
 };
 
 }  // namespace firmware

@@ -23,10 +23,18 @@ base::Result<ConnectionId> Server::Open(const Ipv4Address& peer, hal::Micros now
     connections_[i].Open(peer, now);
     ++shared_.clients;
     ++shared_.counters.accepted;
+    client_marks_.NoteTaken(client_pool().used);
     return static_cast<ConnectionId>(i);
   }
   ++shared_.counters.refused;
+  client_marks_.NoteRefused();
   return base::ResourceExhausted();
+}
+
+base::PoolStats Server::client_pool() const {
+  const auto used = static_cast<std::size_t>(
+      std::count_if(connections_.begin(), connections_.end(), [](const Connection& c) { return c.is_open(); }));
+  return client_marks_.Stats(used, kMaxClients);
 }
 
 void Server::Close(ConnectionId id) {

@@ -42,6 +42,18 @@ void Acd::Start(Ipv4Address address, hal::Micros now) {
   EnterProbing(now);
 }
 
+void Acd::Claim(Ipv4Address address, hal::Micros now) {
+  address_ = address;
+  duplicate_ = false;
+  state_ = AcdState::kAnnouncing;
+  probes_sent_ = 0;
+  announcements_sent_ = 0;
+  semi_active_left_ = 0;
+  semi_active_ = false;
+  last_conflict_at_.reset();
+  deadline_ = now;
+}
+
 void Acd::Stop() {
   state_ = AcdState::kIdle;
   deadline_ = hal::kNever;

@@ -51,11 +51,13 @@ LoginResult AccessControl::Login(std::string_view password, hal::Micros now) {
   }
   failures_ = 0;
   Session& session = FreeOrOldestSlot();
+  if (session.level != AccessLevel::kNone && Elapsed(session.last_used, now) < kSessionIdle) ++evictions_;
   session = Session{};
   result.session = NewToken(session.token);
   result.csrf = NewToken(session.csrf);
   session.level = AccessLevel::kRead;
   session.last_used = now;
+  session_marks_.NoteTaken(session_count(now));
   result.outcome = AccessOutcome::kOk;
   result.level = AccessLevel::kRead;
   return result;

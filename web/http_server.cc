@@ -41,8 +41,10 @@ base::Result<HttpClientId> HttpServer::Open(hal::Micros now) {
     client.last_activity = now;
     client.request_started = hal::kNever;
     ++counters_.accepted;
+    client_marks_.NoteTaken(open_clients());
     return static_cast<HttpClientId>(i);
   }
+  client_marks_.NoteRefused();
   return base::ResourceExhausted();
 }
 

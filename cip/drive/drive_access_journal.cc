@@ -164,8 +164,10 @@ DriveAccessJournal::RequesterJournal* DriveAccessJournal::FindOrClaim(std::uint3
     journal = RequesterJournal{};
     journal.in_use = true;
     journal.requester = requester;
+    requester_marks_.NoteTaken(active_requesters());
     return &journal;
   }
+  requester_marks_.NoteRefused();
   return nullptr;
 }
 

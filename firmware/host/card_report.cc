@@ -4,6 +4,7 @@
 #include <string>
 
 #include "lwip/memp.h"
+#include "lwip/priv/tcp_priv.h"
 #include "lwip/stats.h"
 #include "sim_control.h"
 
@@ -45,6 +46,22 @@ void AppendMem(std::string& out, const std::string& prefix, const stats_mem& m) 
   Line(out, prefix + ".max", m.max);
   Line(out, prefix + ".avail", m.avail);
   Line(out, prefix + ".err", m.err);
+}
+
+std::uint64_t CountPcbs(const tcp_pcb* list) {
+  std::uint64_t count = 0;
+  for (const tcp_pcb* pcb = list; pcb != nullptr; pcb = pcb->next) ++count;
+  return count;
+}
+
+// lwIP's TCP PCB lists. A connection the card closed first stays in TIME_WAIT for 2 x TCP_MSL and keeps
+// its TCP_PCB (docs/robustness.md "Exhaustion"); these lines tell those apart from a leak.
+void AppendTcpPcbs(std::string& out) {
+  Line(out, "lwip.tcp_pcbs.active", CountPcbs(tcp_active_pcbs));
+  Line(out, "lwip.tcp_pcbs.time_wait", CountPcbs(tcp_tw_pcbs));
+  std::uint64_t listening = 0;
+  for (const tcp_pcb_listen* pcb = tcp_listen_pcbs.listen_pcbs; pcb != nullptr; pcb = pcb->next) ++listening;
+  Line(out, "lwip.tcp_pcbs.listen", listening);
 }
 
 void AppendPorts(std::string& out, const hal::FramePort& port) {
@@ -96,9 +113,11 @@ std::size_t Split(std::string_view text, std::string_view (&words)[kMaxWords]) {
 
 constexpr char kHelp[] =
     "help                   this list\n"
-    "stats                  counters: event loop, netif, ports, lwIP protocols and pools\n"
+    "stats                  counters: event loop, netif, ports, lwIP protocols and pools, the card's pools\n"
     "config                 the configuration read from the inverter and its problems\n"
     "leds                   current LED colours\n"
+    "address                IP mode, phase, address in use, ACD duplicate flag, attribute 11 (hex)\n"
+    "led-inputs             what the MS/NS model is given now\n"
     "link L|R up|down       plug or unplug the cable of port L or R\n"
     "power-cycle            power-cycle the inverter and restart the card (state dir kept)\n";
 
@@ -135,6 +154,7 @@ void AppendStats(const CardReport& report, std::string& out) {
   AppendIgmp(out, lwip_stats.igmp);
   AppendProto(out, "udp", lwip_stats.udp);
   AppendProto(out, "tcp", lwip_stats.tcp);
+  AppendTcpPcbs(out);
   AppendMem(out, "lwip.mem", lwip_stats.mem);
   for (int i = 0; i < MEMP_MAX; ++i) {
     const stats_mem* pool = lwip_stats.memp[i];
@@ -154,10 +174,16 @@ void HandleControlCommand(std::string_view command, std::string& reply, const Ca
   } else if (verb == "stats" && count == 1) {
     AppendStats(report, reply);
     if (report.drive != nullptr) AppendDriveStats(*report.drive, reply);
+    if (report.network != nullptr) AppendNetworkStats(*report.network, reply);
+    if (report.pools != nullptr) AppendPoolStats(*report.pools, reply);
   } else if (verb == "config" && count == 1 && report.drive != nullptr) {
     AppendDriveConfig(*report.drive, reply);
   } else if (verb == "leds" && count == 1) {
     reply += report.leds.Describe() + "\n";
+  } else if (verb == "address" && count == 1 && report.network != nullptr) {
+    reply += DescribeAddress(*report.network) + "\n";
+  } else if (verb == "led-inputs" && count == 1 && report.network != nullptr) {
+    reply += DescribeLedInputs(*report.network) + "\n";
   } else if (verb == "power-cycle" && count == 1) {
     // The card and the drive lose power together: the inverter's image is stored before the card
     // restarts (re-exec), and the new process starts the inverter from it.

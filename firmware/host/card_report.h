@@ -13,7 +13,9 @@
 #include "event_loop.h"
 #include "hal/reset.h"
 #include "logging_leds.h"
+#include "network_report.h"
 #include "poll_waiter.h"
+#include "pool_report.h"
 #include "sim_inverter.h"
 
 namespace host {
@@ -25,6 +27,10 @@ struct CardReport {
   hal::host::PollWaiter& waiter;
   // The drive link, register proxy and Modbus server; null in tests of the network side alone.
   const DriveReport* drive = nullptr;
+  // Addressing, switch and LED inputs; null in tests of the network side alone.
+  const NetworkReport* network = nullptr;
+  // The card's own fixed pools (pool.*); null in tests of the network side alone.
+  const PoolReport* pools = nullptr;
 };
 
 using SetPlugged = std::function<base::Status(hal::PortId, bool)>;
@@ -33,7 +39,8 @@ using SetPlugged = std::function<base::Status(hal::PortId, bool)>;
 void AppendLine(std::string& out, const std::string& name, std::uint64_t value);
 
 // Appends `name=value` lines: event loop, netif, per-port counters, every lwIP protocol and pool
-// counter. Pool lines read lwip.memp.<POOL>.used/max/avail/err.
+// counter. Pool lines read lwip.memp.<POOL>.used/max/avail/err; lwip.tcp_pcbs.* count the TCP PCBs by
+// list (active, listening, TIME_WAIT: the TCP_PCB pool's used is active + time_wait).
 void AppendStats(const CardReport& report, std::string& out);
 
 // Runs one control command and appends its answer (data lines, then "ok" or "error <reason>").

@@ -7,7 +7,10 @@
 #include <string_view>
 
 #include "capturing_frame_port.h"
+#include "card_addressing.h"
+#include "card_indicators.h"
 #include "card_netif.h"
+#include "card_records.h"
 #include "card_report.h"
 #include "card_status_publisher.h"
 #include "control_server.h"
@@ -17,12 +20,12 @@
 #include "file_nv_store.h"
 #include "host_clock.h"
 #include "host_random.h"
-#include "link_leds.h"
 #include "logging_leds.h"
 #include "lwip/init.h"
 #include "lwip_port.h"
 #include "modbus/server.h"
 #include "modbus_tcp_service.h"
+#include "network_report.h"
 #include "parameter_writer.h"
 #include "pcap_writer.h"
 #include "poll_waiter.h"
@@ -43,12 +46,6 @@
 namespace host {
 namespace {
 
-// The card's own NV records. The MAC is factory data: a real card has it burnt in; the host card
-// makes up a locally administered one on first start and keeps it in the state dir.
-constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
-// The web server's read and write passwords, as salted hashes (docs/web.md "Passwords and sessions").
-constexpr hal::NvRecordId kNvWebPasswords = 0x0020;
-
 // The card's firmware version as FC 43 and unit 251 show it ("0106": V1.06, the version of the card
 // this one imitates, seed 000 §8.8).
 constexpr std::uint16_t kFirmwareVersion = 0x0106;
@@ -56,22 +53,58 @@ constexpr std::uint16_t kFirmwareVersion = 0x0106;
 // How long a requested reset waits for queued parameter writes (32 writes take well under a second).
 constexpr hal::Micros kResetDrainLimit = 3 * hal::kMicrosPerSecond;
 
-hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
-  hal::MacAddress mac{};
-  const base::Result<std::size_t> read = store.Read(kNvFactoryMac, mac);
-  if (read.ok() && *read == mac.size()) return mac;
-  random.Fill(mac);
-  mac[0] = static_cast<std::uint8_t>((mac[0] & 0xFC) | 0x02);  // unicast, locally administered
-  store.Write(kNvFactoryMac, mac).IgnoreError();  // a read-only state dir still gives a working card
-  return mac;
-}
-
 std::string FormatMac(const hal::MacAddress& mac) {
   char text[18];
   std::snprintf(text, sizeof text, "%02x:%02x:%02x:%02x:%02x:%02x", mac[0], mac[1], mac[2], mac[3],
                 mac[4], mac[5]);
   return text;
 }
+
+// --ip: the address plan keyed into the inverter before power-up, at every start: c504 = 0 (manual) and
+// c505-c516 (one octet per parameter; communication numbers C505-C509, C510-C516).
+bool ForceManualAddress(const HostOptions& options, SimulatedInverter& inverter, std::string& error) {
+  const auto number = [](unsigned title) {
+    return static_cast<std::uint16_t>(0xC500 | (title / 10 % 10) << 4 | title % 10);
+  };
+  std::array<std::uint16_t, 13> values{0};
+  for (unsigned i = 0; i < 4; ++i) {
+    const unsigned shift = 24 - 8 * i;
+    values[1 + i] = static_cast<std::uint16_t>((options.ip >> shift) & 0xFF);
+    values[5 + i] = static_cast<std::uint16_t>((options.netmask >> shift) & 0xFF);
+    values[9 + i] = static_cast<std::uint16_t>((options.gateway >> shift) & 0xFF);
+  }
+  for (unsigned i = 0; i < values.size(); ++i) {
+    const hal::host::sim::WriteResult result =
+        inverter.model().Write(number(504 + i), values[i], hal::host::sim::WriteTarget::kRamAndEeprom);
+    if (!result.ok()) {
+      error = "--ip: the inverter refused c" + std::to_string(504 + i) + " (" +
+              hal::host::sim::WriteOutcomeName(result.outcome) + ")";
+      return false;
+    }
+  }
+  inverter.SaveIfChanged();
+  return true;
+}
+
+// Prints "address ..." on stdout whenever the address in use changes (tests and users wait for it).
+class AddressAnnouncer {
+ public:
+  explicit AddressAnnouncer(const NetworkReport& report) : report_(report) {}
+  void Check() {
+    const firmware::Ipv4Config now = report_.addressing.active();
+    if (printed_ && now == last_) return;
+    if (!printed_ && now.address == 0) return;
+    printed_ = true;
+    last_ = now;
+    std::printf("address %s\n", DescribeAddress(report_).c_str());
+    std::fflush(stdout);
+  }
+
+ private:
+  const NetworkReport& report_;
+  firmware::Ipv4Config last_;
+  bool printed_ = false;
+};
 
 class ResetRequest final : public hal::ResetControl {
  public:
@@ -87,7 +120,7 @@ struct NetworkPort {
   std::unique_ptr<hal::FramePort> device;
   hal::host::PollSource* poll_source = nullptr;
   std::function<base::Status(hal::PortId, bool)> set_plugged;
-  std::string endpoints;  // "modbus=... enip=... io=... http=..."
+  std::string endpoints;  // "modbus=... enip=... io=... http=..." (loopback; TAP: from the address in use)
 };
 
 std::string TapEndpoints(const std::string& ip) {
@@ -117,7 +150,6 @@ bool OpenNetworkPort(const HostOptions& options, const hal::MacAddress& mac, con
     hal::host::TapFramePort* raw = tap.value().get();
     out.poll_source = raw;
     out.set_plugged = [raw](hal::PortId p, bool plugged) { return raw->SetPlugged(p, plugged); };
-    out.endpoints = TapEndpoints(FormatIpv4(options.ip));
     out.device = std::move(tap.value());
     return true;
   }
@@ -170,6 +202,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   std::unique_ptr<SimulatedInverter> inverter =
       SimulatedInverter::Create(inverter_config, *inverter_serial, clock, stderr, error);
   if (!inverter) return CardExit::kFailed;
+  if (options.ip_given && !ForceManualAddress(options, *inverter, error)) return CardExit::kFailed;
   waiter.Register(*inverter_serial);         // request bytes wake the inverter
   waiter.Register(inverter->poll_source());  // its reply and receive timers
   waiter.Register(*card_serial);             // reply bytes wake the card
@@ -196,13 +229,14 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
 
   firmware::BindLwipPlatform(clock, random);
   lwip_init();
+  // The netif starts without an address: the addressing installs one once the configuration is read
+  // from the inverter (c504-c516, c081-c096) and ACD has checked it (docs/network.md "Addressing").
   firmware::CardNetif netif(*port);
-  const std::string hostname = "ipe002z";
-  netif.Start({options.ip, options.netmask, options.gateway}, hostname.c_str());
+  netif.Start(firmware::Ipv4Config{}, nullptr);
+  firmware::CardAddressing addressing(netif, clock, random);
+  netif.SetObserver(&addressing);
 
   firmware::EventLoop loop(clock, waiter, netif);
-  firmware::LinkLeds link_leds(*port, leds);
-  loop.AddService(link_leds).IgnoreError();
   loop.AddService(*inverter).IgnoreError();  // stores the inverter's EEPROM image when due
 
   // The drive link and the front ends (docs/drive-link.md, docs/modbus.md). The register proxy owns the
@@ -219,12 +253,16 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   // drive objects. Settings the CIP objects store go to the inverter's c-parameters through the
   // parameter writer, or to the card's own store.
   firmware::ParameterWriter parameter_writer(proxy);
-  firmware::EtherNetIpCard eip_card({*port, netif, proxy, parameter_writer, *store.value(), reset, random, clock},
+  firmware::EtherNetIpCard eip_card({*port, netif, addressing, proxy, parameter_writer, *store.value(), reset, random, clock},
                                     {.keepalive = options.tcp_keepalive, .connections = {}});
   if (base::Status started = eip_card.Start(); !started.ok()) {
     error = std::string("EtherNet/IP: ") + base::StatusName(started);
     return CardExit::kFailed;
   }
+  // TCP/IP attribute 10 as stored in the card (a change applies at the next reset).
+  addressing.SetAcdEnabled(eip_card.tcpip().StoredSettings().select_acd);
+  // MS, NS and LNK from one model; the power-up test runs from here.
+  firmware::CardIndicators indicators({*port, proxy, addressing, &eip_card.connections()}, leds, clock.NowMicros());
 
   // The web server on port 80 (docs/web.md), open while c554 = 1, whatever the protocol. Its passwords
   // are the card's own (NV store), not the inverter's.
@@ -247,6 +285,8 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   firmware::WebService web_service(http_server, clock, {.port = 80, .keepalive = options.tcp_keepalive});
   web_status.SetWebCounters(http_server, web_service);
   publisher.AddFrontEnd(web_service).IgnoreError();
+  publisher.AddFrontEnd(addressing).IgnoreError();
+  publisher.AddFrontEnd(indicators).IgnoreError();
   proxy.SetConfigListener(&publisher);
   if (base::Status started = proxy.Start(clock.NowMicros()); !started.ok()) {
     error = std::string("drive link: ") + base::StatusName(started);
@@ -259,12 +299,18 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   loop.AddService(web_application).IgnoreError();
   loop.AddService(web_service).IgnoreError();
   loop.AddService(publisher).IgnoreError();
+  loop.AddService(addressing).IgnoreError();
+  loop.AddService(indicators).IgnoreError();
 
   SignalSource signals;
   waiter.Register(signals);
 
   const DriveReport drive_report{proxy, modbus_server, modbus_service, eip_card, parameter_writer};
-  CardReport report{netif, loop, logged_leds, waiter, &drive_report};
+  const NetworkReport network_report{netif, addressing, indicators};
+  const PoolReport pool_report{modbus_service, modbus_server, eip_card, proxy, parameter_writer,
+                               web_service,    http_server,   access,   clock};
+  CardReport report{netif, loop, logged_leds, waiter, &drive_report, &network_report, &pool_report};
+  AddressAnnouncer announcer(network_report);
   std::unique_ptr<ControlServer> control;
   if (!options.sim_control_path.empty()) {
     control = std::make_unique<ControlServer>(
@@ -286,13 +332,20 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
       if (parameter_writer.pending() == 0 || now >= reset_deadline) break;
     }
     loop.RunOnce();
+    announcer.Check();
     // Ready once the front ends run with the configuration read from the inverter (or the drive link
-    // has given up: e-23, the card runs without a drive).
+    // has given up: e-23, the card runs without a drive) and the addressing is past its checks: an
+    // address in use, a BOOTP/DHCP sequence running (its result shows in an "address" line), a conflict,
+    // or no usable address configured.
     const bool drive_settled = proxy.config_loaded() || proxy.link().state() == drive_link::LinkState::kFault;
-    if (!ready_printed && netif.link_up() && drive_settled) {
-      std::printf("ready ip=%s mac=%s net=%s %s control=%s state=%s drive=%s\n", FormatIpv4(options.ip).c_str(),
+    const bool address_settled = addressing.phase() != firmware::AddressPhase::kProbing &&
+                                 (addressing.configured() || proxy.link().state() == drive_link::LinkState::kFault);
+    if (!ready_printed && netif.link_up() && drive_settled && address_settled) {
+      std::printf("ready ip=%s mac=%s net=%s %s control=%s state=%s drive=%s\n",
+                  FormatIpv4(addressing.active().address).c_str(),
                   FormatMac(mac).c_str(), options.net == NetKind::kTap ? "tap" : "loopback",
-                  network.endpoints.c_str(),
+                  (options.net == NetKind::kTap ? TapEndpoints(FormatIpv4(addressing.active().address))
+                                                : network.endpoints).c_str(),
                   options.sim_control_path.empty() ? "-" : options.sim_control_path.c_str(),
                   options.state_dir.c_str(), drive_link::LinkStateName(proxy.link().state()));
       std::fflush(stdout);

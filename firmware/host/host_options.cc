@@ -148,8 +148,11 @@ std::string FormatIpv4(std::uint32_t v) {
 const char* HostUsage() {
   return "usage: ipe002z-host [options]\n"
          "  --net loopback | tap:IF[,tap:IF2]  network port (default loopback: libslirp, no root)\n"
-         "  --ip A.B.C.D/N                     card address (loopback default 10.0.2.15/24)\n"
-         "  --gateway A.B.C.D                  default gateway (loopback default 10.0.2.2)\n"
+         "  --ip A.B.C.D/N                     card address: sets c504 = 0 (manual) and c505-c516 in the\n"
+         "                                     inverter at every start (loopback: always, default\n"
+         "                                     10.0.2.15/24); without it (tap) c504-c516 decide: manual,\n"
+         "                                     BOOTP or DHCP\n"
+         "  --gateway A.B.C.D                  default gateway with --ip (loopback default 10.0.2.2)\n"
          "  --host-addr A.B.C.D                loopback address the forwards bind (default 127.0.0.2)\n"
          "  --state-dir DIR                    persistent state (default: a fresh temporary dir)\n"
          "  --pcap FILE                        capture every frame in and out\n"
@@ -229,10 +232,6 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
     options.ip_given = true;
   }
   if (options.net == NetKind::kLoopback && !gateway_given) options.gateway = kLoopbackGateway;
-  if (!options.ip_given) {
-    error = "--ip is required with --net tap";
-    return ParseOutcome::kError;
-  }
   for (ParamPreset& preset : options.params) {
     std::string reason;
     if (!CheckParam(preset, options.model, reason)) {

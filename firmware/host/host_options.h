@@ -26,7 +26,7 @@ struct HostOptions {
   std::uint32_t ip = 0;                     // host byte order
   std::uint32_t netmask = 0;
   std::uint32_t gateway = 0;
-  bool ip_given = false;
+  bool ip_given = false;                    // --ip: forces c504 = 0 and c505-c516 at every start
   std::string host_address = "127.0.0.2";  // loopback address the forwards bind (--net loopback)
   std::string state_dir;                    // empty: a fresh temporary directory
   std::string pcap_path;

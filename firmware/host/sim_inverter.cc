@@ -4,57 +4,20 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "atomic_file.h"
+#include "base/crc32.h"
 
 namespace host {
 namespace {
 
 using hal::host::sim::InverterModel;
 using hal::host::sim::ModelName;
-
-std::string ErrnoText(const std::string& what) { return what + ": " + std::strerror(errno); }
-
-bool WriteAll(int fd, const std::string& text) {
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
-// Temp file, fsync, rename over the live file, fsync of the directory: a cut at any moment leaves the
-// old image or the new one, never a mix (as FileNvStore does for the card's records).
-bool WriteFileAtomically(const std::string& path, const std::string& text, std::string& error) {
-  const std::string temp = path + ".tmp";
-  const int fd = open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    error = ErrnoText(temp);
-    return false;
-  }
-  const bool written = WriteAll(fd, text) && fsync(fd) == 0;
-  if (!written) error = ErrnoText(temp);
-  close(fd);
-  if (!written) return false;
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    error = ErrnoText(path);
-    return false;
-  }
-  const std::string directory = std::filesystem::path(path).parent_path().string();
-  const int dir_fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd < 0 || fsync(dir_fd) != 0) {
-    error = ErrnoText(directory);
-    if (dir_fd >= 0) close(dir_fd);
-    return false;
-  }
-  close(dir_fd);
-  return true;
-}
 
 enum class FileState { kMissing, kRead, kUnreadable };
 
@@ -70,9 +33,19 @@ FileState ReadFile(const std::string& path, std::string& text) {
   return FileState::kRead;
 }
 
-// Why LoadEeprom refused `text`, in words: the one case worth naming is another model's image.
-std::string RefusalReason(const std::string& text, hal::host::sim::Model model) {
-  std::istringstream lines(text);
+// "check <crc>" for `image`, without the line end.
+std::string CheckLineFor(std::string_view image) {
+  const std::uint32_t crc = base::Crc32(std::span(reinterpret_cast<const std::uint8_t*>(image.data()), image.size()));
+  char line[32];
+  std::snprintf(line, sizeof line, "check %08x", static_cast<unsigned>(crc));
+  return line;
+}
+
+// Why the file was refused, in words: a failed check, or another model's image.
+std::string RefusalReason(const std::string& file, hal::host::sim::Model model) {
+  const std::optional<std::string_view> image = EepromImageOf(file);
+  if (!image) return "its check line is missing or does not match (cut short, damaged, or from an older version)";
+  std::istringstream lines{std::string(*image)};
   std::string line;
   while (std::getline(lines, line)) {
     if (line.rfind("model ", 0) == 0 && line.substr(6) != ModelName(model)) {
@@ -82,7 +55,41 @@ std::string RefusalReason(const std::string& text, hal::host::sim::Model model) 
   return "it is not a valid EEPROM image";
 }
 
+// Replaces the file atomically (hal/host/atomic_file.h); `cut` is the tests' power cut.
+bool StoreFile(const std::string& path, const std::string& contents, std::string& error,
+               const std::optional<hal::host::PowerCut>& cut) {
+  const std::filesystem::path file(path);
+  const std::string directory = file.parent_path().string();
+  const int dir_fd = open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd < 0) {
+    error = directory + ": " + std::strerror(errno);
+    return false;
+  }
+  const base::Status stored = hal::host::ReplaceFileAtomically(
+      dir_fd, file.filename().string(),
+      std::span(reinterpret_cast<const std::uint8_t*>(contents.data()), contents.size()), &error, cut);
+  close(dir_fd);
+  if (!stored.ok() && error.empty()) error = "power cut (test)";
+  return stored.ok();
+}
+
 }  // namespace
+
+std::string EepromFileContents(std::string_view image) {
+  std::string file(image);
+  file += CheckLineFor(image);
+  file += '\n';
+  return file;
+}
+
+std::optional<std::string_view> EepromImageOf(std::string_view file) {
+  if (file.empty() || file.back() != '\n') return std::nullopt;
+  const std::size_t previous_end = file.size() < 2 ? std::string_view::npos : file.rfind('\n', file.size() - 2);
+  const std::size_t last_line = previous_end == std::string_view::npos ? 0 : previous_end + 1;
+  const std::string_view image = file.substr(0, last_line);
+  if (file.substr(last_line, file.size() - 1 - last_line) != CheckLineFor(image)) return std::nullopt;
+  return image;
+}
 
 hal::host::sim::ServerConfig ServerConfigFromOptions(const HostOptions& options) {
   hal::host::sim::ServerConfig config =
@@ -109,10 +116,17 @@ std::unique_ptr<SimulatedInverter> SimulatedInverter::Create(const SimInverterCo
   std::error_code ec;
   std::filesystem::create_directories(config.directory, ec);  // a failure shows when storing
 
+  // A save the last run did not finish (a power cut, a kill) left a temp file; the live file is whole.
+  if (const int dir_fd = open(config.directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir_fd >= 0) {
+    hal::host::RemoveTempFiles(dir_fd, config.directory, std::filesystem::path(self.path_).filename().string());
+    close(dir_fd);
+  }
   std::string text;
   const FileState state = ReadFile(self.path_, text);
-  if (state == FileState::kRead && self.model_.LoadEeprom(text)) {
-    self.saved_image_ = text;  // stored as it is; rewritten only when something changes
+  const std::optional<std::string_view> image =
+      state == FileState::kRead ? EepromImageOf(text) : std::optional<std::string_view>();
+  if (image && self.model_.LoadEeprom(*image)) {
+    self.saved_image_ = std::string(*image);  // rewritten only when something changes
   } else {
     if (state != FileState::kMissing) {
       const std::string reason = state == FileState::kUnreadable ? std::string("it cannot be read")
@@ -166,7 +180,9 @@ bool SimulatedInverter::SaveIfChanged() {
   const hal::Micros now = clock_.NowMicros();
   if (image != saved_image_) {
     std::string error;
-    if (!WriteFileAtomically(path_, image, error)) {
+    const std::optional<hal::host::PowerCut> cut = power_cut_;
+    power_cut_.reset();
+    if (!StoreFile(path_, EepromFileContents(image), error, cut)) {
       if (!save_failing_) Warn("cannot store the inverter's EEPROM (" + error + "); retrying");
       save_failing_ = true;
       return false;

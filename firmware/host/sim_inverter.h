@@ -3,10 +3,15 @@
 // parameters across runs and restarts like a real one (docs/simulator.md "In ipe002z-host").
 //
 // The EEPROM file is `<state dir>/inverter/<model>.eeprom` (vf-mb1.eeprom, vf-s15.eeprom): the model's
-// text image (InverterModel::SerializeEeprom). One file per model, so one state dir can stand for a card
-// that was moved between a VF-MB1 and a VF-S15; --model picks the drive.
+// text image (InverterModel::SerializeEeprom) followed by one line `check <crc>`, the CRC-32 of every
+// byte before that line in 8 lowercase hex digits. One file per model, so one state dir can stand for a
+// card that was moved between a VF-MB1 and a VF-S15; --model picks the drive. A file whose check line
+// is missing or wrong (cut short, damaged, written before the check line existed) is not used: it is
+// moved aside and the inverter starts from its factory defaults, never from part of an image
+// (docs/robustness.md "Power loss").
 //
-// When it is stored (always whole, atomically: temp file, fsync, rename, fsync of the directory):
+// When it is stored (always whole, atomically: hal/host/atomic_file.h, temp file, fsync, rename, fsync
+// of the directory):
 // - at start, when the inverter is new (no usable file): defaults plus the --param presets;
 // - within kSaveCheckInterval of a change of a register value, a write counter or the trip history;
 // - when only the cumulative counters moved (run and powered time, energy): at most every
@@ -17,8 +22,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "atomic_file.h"
 
 #include "event_loop.h"
 #include "hal/clock.h"
@@ -38,6 +47,11 @@ struct SimInverterConfig {
 
 // The server settings the command line asks for: --rs485-profile, --sim-processing-ms.
 hal::host::sim::ServerConfig ServerConfigFromOptions(const HostOptions& options);
+
+// The file for an image (the image and its check line), and the image in a file whose check line is
+// there and matches (nothing otherwise).
+std::string EepromFileContents(std::string_view image);
+std::optional<std::string_view> EepromImageOf(std::string_view file);
 
 class SimulatedInverter final : public firmware::Service {
  public:
@@ -79,6 +93,9 @@ class SimulatedInverter final : public firmware::Service {
   const std::string& file_path() const { return path_; }
   bool started_new() const { return started_new_; }  // no usable file was found: presets applied
   std::uint64_t saves() const { return saves_; }     // images written, for tests
+  // Test hook, one shot: the next store loses power at `cut` (hal::host::PowerCut) and fails; the
+  // inverter must not be used afterwards. A test then creates a new one on the same directory.
+  void CutPowerDuringNextSaveForTest(const hal::host::PowerCut& cut) { power_cut_ = cut; }
 
  private:
   SimulatedInverter(const SimInverterConfig& config, hal::SerialPort& line, const hal::Clock& clock,
@@ -99,6 +116,7 @@ class SimulatedInverter final : public firmware::Service {
   hal::Micros next_check_ = 0;
   bool save_failing_ = false;  // warn once per run of failures, not every second
   std::uint64_t saves_ = 0;
+  std::optional<hal::host::PowerCut> power_cut_;
 };
 
 }  // namespace host

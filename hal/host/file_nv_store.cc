@@ -5,34 +5,17 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <vector>
+
+#include "atomic_file.h"
+#include "base/crc32.h"
 
 namespace hal::host {
 namespace {
 
 constexpr std::size_t kMaxFileBytes = FileNvStore::kHeaderBytes + kMaxRecordBytes;
-
-constexpr std::array<std::uint32_t, 256> MakeCrc32Table() {
-  std::array<std::uint32_t, 256> table{};
-  for (std::uint32_t i = 0; i < 256; ++i) {
-    std::uint32_t crc = i;
-    for (int bit = 0; bit < 8; ++bit) crc = (crc & 1U) != 0 ? (crc >> 1) ^ 0xEDB88320U : crc >> 1;
-    table[i] = crc;
-  }
-  return table;
-}
-constexpr std::array<std::uint32_t, 256> kCrc32Table = MakeCrc32Table();
-
-// CRC-32 as in IEEE 802.3 and zlib (reflected 0x04C11DB7, initial and final XOR 0xFFFFFFFF).
-std::uint32_t Crc32(std::span<const std::uint8_t> bytes) {
-  std::uint32_t crc = 0xFFFFFFFFU;
-  for (std::uint8_t byte : bytes) crc = (crc >> 8) ^ kCrc32Table[(crc ^ byte) & 0xFFU];
-  return crc ^ 0xFFFFFFFFU;
-}
 
 void PutLe16(std::uint8_t* out, std::uint16_t value) {
   out[0] = static_cast<std::uint8_t>(value);
@@ -56,7 +39,7 @@ std::vector<std::uint8_t> EncodeRecord(NvRecordId id, std::span<const std::uint8
   PutLe16(&file[4], FileNvStore::kFormatVersion);
   PutLe16(&file[6], id);
   PutLe32(&file[8], static_cast<std::uint32_t>(payload.size()));
-  PutLe32(&file[12], Crc32(payload));
+  PutLe32(&file[12], base::Crc32(payload));
   std::copy(payload.begin(), payload.end(), file.begin() + FileNvStore::kHeaderBytes);
   return file;
 }
@@ -72,34 +55,8 @@ base::Result<std::span<const std::uint8_t>> DecodeRecord(NvRecordId id,
     return base::DataLoss();
   }
   const std::span<const std::uint8_t> payload = file.subspan(FileNvStore::kHeaderBytes);
-  if (Crc32(payload) != GetLe32(header + 12)) return base::DataLoss();
+  if (base::Crc32(payload) != GetLe32(header + 12)) return base::DataLoss();
   return payload;
-}
-
-base::Status StatusFromErrno(int err) {
-  switch (err) {
-    case ENOENT: return base::NotFound();
-    case EACCES:
-    case EPERM:
-    case EROFS: return base::PermissionDenied();
-    case ENOSPC:
-    case EDQUOT: return base::ResourceExhausted();
-    case ENOTDIR: return base::FailedPrecondition();
-    default: return base::Internal();
-  }
-}
-
-bool WriteAll(int fd, const std::uint8_t* data, std::size_t size) {
-  while (size > 0) {
-    const ssize_t n = write(fd, data, size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    data += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return true;
 }
 
 }  // namespace
@@ -109,7 +66,7 @@ std::string FileNvStore::RecordFileName(NvRecordId id) {
 }
 
 std::string FileNvStore::TempFileName(NvRecordId id) {
-  return RecordFileName(id) + ".tmp";
+  return hal::host::TempFileName(RecordFileName(id));
 }
 
 base::Result<std::unique_ptr<FileNvStore>> FileNvStore::Open(const std::string& directory,
@@ -162,42 +119,9 @@ base::Result<std::size_t> FileNvStore::Read(NvRecordId id, std::span<std::uint8_
 base::Status FileNvStore::Write(NvRecordId id, std::span<const std::uint8_t> data) {
   if (data.size() > kMaxRecordBytes) return base::InvalidArgument();
   const std::vector<std::uint8_t> file = EncodeRecord(id, data);
-  const std::string temp_name = TempFileName(id);
-
-  // O_TRUNC: a temp file left by an earlier failed Write() is simply overwritten.
-  const int fd = openat(dir_fd_, temp_name.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0) return StatusFromErrno(errno);
-
-  if (power_cut_after_.has_value()) {
-    const std::size_t reached_disk = std::min(*power_cut_after_, file.size());
-    power_cut_after_.reset();
-    // No fsync and no rename: the process "dies" here; what reached the disk is all that is left.
-    WriteAll(fd, file.data(), reached_disk);
-    close(fd);
-    return base::Internal();
-  }
-
-  // The data must be durable before the rename makes it the live record; otherwise a cut just after
-  // the rename could leave a live file whose blocks never reached the disk.
-  if (!WriteAll(fd, file.data(), file.size()) || fsync(fd) != 0) {
-    const int err = errno;
-    close(fd);
-    unlinkat(dir_fd_, temp_name.c_str(), 0);
-    return StatusFromErrno(err);
-  }
-  if (close(fd) != 0) {
-    const int err = errno;
-    unlinkat(dir_fd_, temp_name.c_str(), 0);
-    return StatusFromErrno(err);
-  }
-  if (renameat(dir_fd_, temp_name.c_str(), dir_fd_, RecordFileName(id).c_str()) != 0) {
-    const int err = errno;
-    unlinkat(dir_fd_, temp_name.c_str(), 0);
-    return StatusFromErrno(err);
-  }
-  // The rename lives in the directory; until the directory is synced a cut may still undo it.
-  if (fsync(dir_fd_) != 0) return StatusFromErrno(errno);
-  return base::OkStatus();
+  const std::optional<PowerCut> cut = power_cut_;
+  power_cut_.reset();
+  return ReplaceFileAtomically(dir_fd_, RecordFileName(id), file, nullptr, cut);
 }
 
 base::Status FileNvStore::Erase(NvRecordId id) {
@@ -208,13 +132,6 @@ base::Status FileNvStore::Erase(NvRecordId id) {
   return base::OkStatus();
 }
 
-void FileNvStore::RemoveStaleTempFiles() {
-  // Best effort with error codes: a directory that cannot be listed only leaves harmless temp files.
-  std::error_code ec;
-  for (std::filesystem::directory_iterator it(directory_, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.starts_with("nv-") && name.ends_with(".rec.tmp")) unlinkat(dir_fd_, name.c_str(), 0);
-  }
-}
+void FileNvStore::RemoveStaleTempFiles() { RemoveTempFiles(dir_fd_, directory_, "nv-"); }
 
 }  // namespace hal::host

@@ -7,11 +7,12 @@
 //   offset 8  u32 payload length (0..kMaxRecordBytes; must equal file size - 16)
 //   offset 12 u32 CRC-32 (IEEE 802.3, as zlib) of the payload
 //
-// Power-loss atomicity comes from never touching the live file: Write() writes the whole new file as
-// `nv-<id>.rec.tmp` in the same directory, fsyncs it, renames it over `nv-<id>.rec` (atomic on POSIX
-// file systems) and fsyncs the directory so the rename itself is durable. A cut before the rename
-// leaves the old file intact plus a partial temp file, which Open() deletes. The header check catches
-// what atomicity cannot (a bad disk, a hand-edited file) and reports it as kDataLoss.
+// Power-loss atomicity comes from never touching the live file (atomic_file.h, which says what it rests
+// on): Write() writes the whole new file as `nv-<id>.rec.tmp` in the same directory, fsyncs it, renames
+// it over `nv-<id>.rec` and fsyncs the directory. A cut before the rename leaves the old file intact
+// plus a partial temp file, which Open() deletes. The header check catches what atomicity cannot (a bad
+// disk, a hand-edited or truncated file) and reports it as kDataLoss, which every reader treats as a
+// record that was never written.
 #pragma once
 
 #include <cstddef>
@@ -22,6 +23,7 @@
 #include <string>
 #include <utility>
 
+#include "atomic_file.h"
 #include "base/status.h"
 #include "hal/nv_store.h"
 
@@ -54,12 +56,14 @@ class FileNvStore final : public NvStore {
   static std::string TempFileName(NvRecordId id);
   const std::string& directory() const { return directory_; }
 
-  // Host-only test hook, one shot: the next Write() loses power once `bytes` bytes of the new record
+  // Host-only test hooks, one shot: the next Write() loses power once `bytes` bytes of the new record
   // file (header + payload) have reached the disk. It leaves the temp file holding exactly that prefix,
   // never renames it, and returns kInternal; the store must not be used afterwards. A test then opens
   // a fresh FileNvStore on the same directory, as the card does when power returns. `bytes` equal to
   // the whole file models a cut after the data is safe but before the rename.
-  void CutPowerAfterBytesForTest(std::size_t bytes) { power_cut_after_ = bytes; }
+  void CutPowerAfterBytesForTest(std::size_t bytes) { power_cut_ = PowerCut{PowerCut::Stage::kWritingTempFile, bytes}; }
+  // The same after the rename, before the directory is synced (the new record is live).
+  void CutPowerAfterRenameForTest() { power_cut_ = PowerCut{PowerCut::Stage::kAfterRename, 0}; }
 
  private:
   FileNvStore(std::string directory, int dir_fd) : directory_(std::move(directory)), dir_fd_(dir_fd) {}
@@ -68,7 +72,7 @@ class FileNvStore final : public NvStore {
 
   std::string directory_;
   int dir_fd_ = -1;  // kept open for openat/renameat and to fsync the directory after a rename
-  std::optional<std::size_t> power_cut_after_;
+  std::optional<PowerCut> power_cut_;
 };
 
 }  // namespace hal::host

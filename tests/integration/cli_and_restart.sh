@@ -5,7 +5,7 @@ source "$(dirname "$0")/lib.sh"
 
 usage=$("$FIRMWARE" --help) || fail "--help exited non-zero"
 grep -q -- "--net loopback | tap:IF" <<<"$usage" || fail "--help does not print the usage"
-for bad in "--bogus" "--net eth0" "--ip 10.0.0.1" "--ip 300.1.1.1/24" "--model vf-x" "--net tap:t0" \
+for bad in "--bogus" "--net eth0" "--ip 10.0.0.1" "--ip 300.1.1.1/24" "--model vf-x" \
            "--param c500" "--param =1" "--param c500=abc" "--host-addr 10.0.0.1" "--state-dir"; do
   set +e
   # shellcheck disable=SC2086

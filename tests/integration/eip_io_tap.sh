@@ -777,6 +777,10 @@ def loss_case(c, ep, serial, c101, c100=0, idle=False):
     same(f"c101={c101}: counters", stats, expected)
     if c101 != 1:
         same("the loss action in force", (stat("proxy.loss_action_active"), stat("proxy.c536")), (1, 0))
+    if not idle:
+        # NS: "connection timed out" (red flashing) until re-established (docs/network.md "LED model").
+        check("LED inputs: the owner timed out", "connections=timed-out" in sim.command("led-inputs")[0],
+              sim.command("led-inputs")[0])
 
     # Restore: a connection in run mode again (a new one after a timeout, the same one after idle).
     if idle:
@@ -787,6 +791,8 @@ def loss_case(c, ep, serial, c101, c100=0, idle=False):
         stopped_sending(ep, conn.t_o_id, f"c101={c101}: the timed-out connection", settle=0.0, window=0.1)
         recovery = run_owner(c, ep, serial + 0x80, multiplier=2, data="60 00 00 00")
     wait_until("NetworkRestored", lambda: stat("cip.restores") == counters["cip.restores"] + 1, 2.0)
+    check("LED inputs: a connection established again",
+          "connections=established" in sim.command("led-inputs")[0], sim.command("led-inputs")[0])
     same(f"c101={c101}: restored (cip.lost, loss action, c536)",
          (stat("cip.lost"), stat("proxy.loss_action_active"), stat("proxy.c536")), (0, 0, 0))
     if c101 == 4:

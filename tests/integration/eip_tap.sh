@@ -26,6 +26,18 @@ PY=/usr/bin/python3
 c500=$("$CTL" "$CARD_CONTROL" "get c500" | sed -n 's/^c500 = \([0-9]*\).*/\1/p')
 [ -n "$c500" ] || fail "cannot read c500 from the simulated inverter"
 
+# The indicators after start (docs/network.md "LED model"): the power-up test, then MS steady green and,
+# under EtherNet/IP with no connection yet, NS flashing green (1 Hz); under Modbus TCP NS steady green.
+"$IT/led_log.py" "$CARD_LOG" MS power-up || fail "power-up LED test"
+sleep 3.6
+"$IT/led_log.py" "$CARD_LOG" MS steady-green || fail "MS not steady green: $("$CTL" "$CARD_CONTROL" leds)"
+if [ "$c500" = 1 ]; then
+  "$IT/led_log.py" "$CARD_LOG" NS flash-green || fail "EtherNet/IP NS not flashing green without connections"
+else
+  "$IT/led_log.py" "$CARD_LOG" NS steady-green || fail "Modbus TCP NS not steady green"
+fi
+pass "LEDs: power-up test, MS green, NS $([ "$c500" = 1 ] && echo 'flashing green (no connection)' || echo green)"
+
 # The checks, one program; the first argument picks the phase.
 read -r -d '' CHECKS <<'PY' || true
 import os, re, socket, struct, subprocess, sys, time

@@ -15,6 +15,12 @@ stat_of() {
   sed -n "s/^$1=//p" <<<"$answer"
 }
 
+# stat_is NAME VALUE: the counter NAME of 'stats' is VALUE now (for wait_for, which re-runs it).
+stat_is() { [ "$(stat_of "$1")" = "$2" ]; }
+
+# param_is NAME VALUE: the simulated inverter's parameter NAME (e.g. c536) reads VALUE now.
+param_is() { [ "$("$CTL" "$CARD_CONTROL" "get $1" | sed -n "s/^$1 = \([0-9]*\).*/\1/p")" = "$2" ]; }
+
 # wait_for SECONDS COMMAND...: retry COMMAND every 0.1 s until it succeeds or time runs out.
 wait_for() {
   local limit=$(( $1 * 10 )); shift

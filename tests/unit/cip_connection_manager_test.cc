@@ -140,6 +140,9 @@ TEST(CipConnectionManagerTest, OpensMulticastAndSharesTheProduction) {
   expected[6] = 0x03;  // connection serial 3
   expected[7] = 0x00;
   EXPECT_EQ(card.Open(input), expected);
+  // Two connections on one production: the refusal was the production pool's, not the table's.
+  EXPECT_EQ(card.cm.production_pool(), (base::PoolStats{1, kMaxCipConnections, 1, 1}));
+  EXPECT_EQ(card.cm.connection_pool(), (base::PoolStats{2, kMaxCipConnections, 2, 0}));
   card.groups.count = 2;
   EXPECT_EQ(card.Open(input)[2], 0x00);
   EXPECT_EQ(*card.context.reply_t_to_o, (SocketAddress{SocketAddress::kAfInet, 2222, 0xEFC00121}));
@@ -437,6 +440,14 @@ TEST(CipConnectionManagerTest, OutOfConnections) {
   EXPECT_EQ(card.Open(InputOnly(17)), expected);
   EXPECT_EQ(card.cm.ActiveConnections(), 16);
   EXPECT_EQ(card.Ask(Hex("0E 03 20 02 24 01 30 03")), Hex("8E 00 00 00 10 00"));
+  EXPECT_EQ(card.cm.connection_pool(), (base::PoolStats{16, kMaxCipConnections, 16, 1}));
+  EXPECT_EQ(card.cm.production_pool(), (base::PoolStats{16, kMaxCipConnections, 16, 0}));
+  // Forward_Close of every one gives every entry and every production back.
+  for (std::uint16_t serial = 1; serial <= 16; ++serial) {
+    ASSERT_EQ(card.Ask(test::ForwardCloseRequestBytes({serial, 0x3333, 0x12345678}))[2], 0x00) << serial;
+  }
+  EXPECT_EQ(card.cm.connection_pool(), (base::PoolStats{0, kMaxCipConnections, 16, 1}));
+  EXPECT_EQ(card.cm.production_pool(), (base::PoolStats{0, kMaxCipConnections, 16, 0}));
 }
 
 TEST(CipConnectionManagerTest, ExplicitConnectionLimit) {
@@ -449,6 +460,12 @@ TEST(CipConnectionManagerTest, ExplicitConnectionLimit) {
   OpenParams seventh = test::ExplicitParams();
   EXPECT_EQ(card.Open(seventh), Refused("1A 01"));
   EXPECT_EQ(card.cm.ActiveConnections(), 6);
+  EXPECT_EQ(card.cm.explicit_pool(), (base::PoolStats{6, kMaxExplicitConnections, 6, 1}));
+  EXPECT_EQ(card.cm.connection_pool(), (base::PoolStats{6, kMaxCipConnections, 6, 0}));
+  ASSERT_EQ(card.Ask(test::ForwardCloseRequestBytes({2, 0x3333, 0x12345678}))[2], 0x00);
+  EXPECT_EQ(card.cm.explicit_pool(), (base::PoolStats{5, kMaxExplicitConnections, 6, 1}));
+  EXPECT_EQ(card.Open(seventh)[2], 0x00);  // the freed reply store serves the next one
+  EXPECT_EQ(card.cm.explicit_pool(), (base::PoolStats{6, kMaxExplicitConnections, 6, 1}));
 }
 
 TEST(CipConnectionManagerTest, ForwardClose) {

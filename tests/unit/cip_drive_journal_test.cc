@@ -219,14 +219,18 @@ TEST_F(DriveJournalTest, RequestersAreIndependentUpToTheLimit) {
   const JournalAnswer refused = journal_.Read(one_too_many, 0x0003);
   EXPECT_EQ(refused.state, JournalState::kRefused);
   EXPECT_EQ(refused.refusal, base::StatusCode::kResourceExhausted);
+  EXPECT_EQ(journal_.requester_pool(),
+            (base::PoolStats{kMaxJournalRequesters, kMaxJournalRequesters, kMaxJournalRequesters, 1}));
 
   // Completions reach the right requester.
   ASSERT_TRUE(drive_.CompleteWith(Value(10)));  // requester 0's
   EXPECT_TRUE(journal_.ReadyToRetry(0));
   EXPECT_FALSE(journal_.ReadyToRetry(1));
   journal_.OnRequestFinished(0);
+  EXPECT_EQ(journal_.requester_pool().used, kMaxJournalRequesters - 1);
   RequestContext now_room = Pass(100);
   EXPECT_EQ(journal_.Read(now_room, 0x0003).state, JournalState::kPending);
+  EXPECT_EQ(journal_.requester_pool().used, kMaxJournalRequesters);
 }
 
 TEST_F(DriveJournalTest, FinishedForgetsAndIgnoresLateCompletions) {

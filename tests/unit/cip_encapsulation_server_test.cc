@@ -161,6 +161,7 @@ TEST_F(CipEncapsulationServerTest, NinthSessionIsRefusedAndTheOthersStillWork) {
   EXPECT_EQ(Exchange(ninth, RegisterSessionRequest()),
             Hex("65 00 04 00 00 00 00 00 02 00 00 00 01 02 03 04 05 06 07 08 00 00 00 00 | 01 00 00 00"));
   EXPECT_EQ(server_.session_count(), kMaxSessions);
+  EXPECT_EQ(server_.session_pool(), (base::PoolStats{kMaxSessions, kMaxSessions, kMaxSessions, 1}));
   for (std::size_t i = 0; i < ids.size(); ++i) {
     const Bytes request = test::Concat(Header(0x6F, 16, handles[i]),
                                        Hex("00 00 00 00 00 00 02 00 00 00 00 00 B2 00 00 00"));
@@ -168,8 +169,15 @@ TEST_F(CipEncapsulationServerTest, NinthSessionIsRefusedAndTheOthersStillWork) {
   }
   // Closing one connection frees its session for the ninth.
   server_.CloseTcpConnection(ids[3]);
+  EXPECT_EQ(server_.session_pool(), (base::PoolStats{kMaxSessions - 1, kMaxSessions, kMaxSessions, 1}));
   random_.Push(0xABCDEF01);
   EXPECT_EQ(Register(ninth), 0xABCDEF01U);
+  EXPECT_EQ(server_.session_pool(), (base::PoolStats{kMaxSessions, kMaxSessions, kMaxSessions, 1}));
+  // Every connection gone: every session with it, and the pools are back where they started.
+  for (std::size_t i = 0; i < ids.size(); ++i) server_.CloseTcpConnection(ids[i]);
+  server_.CloseTcpConnection(ninth);
+  EXPECT_EQ(server_.session_pool(), (base::PoolStats{0, kMaxSessions, kMaxSessions, 1}));
+  EXPECT_EQ(server_.connection_pool(), (base::PoolStats{0, kMaxTcpConnections, kMaxSessions + 1, 0}));
 }
 
 TEST_F(CipEncapsulationServerTest, HandleCollisionsAndZeroAreDrawnAgain) {
@@ -184,6 +192,12 @@ TEST_F(CipEncapsulationServerTest, HandleCollisionsAndZeroAreDrawnAgain) {
 TEST_F(CipEncapsulationServerTest, TooManyConnectionsAreRefused) {
   for (std::size_t i = 0; i < kMaxTcpConnections; ++i) Open();
   EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{1, 2}, now_).status(), base::ResourceExhausted());
+  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{1, 3}, now_).status(), base::ResourceExhausted());
+  EXPECT_EQ(server_.connection_pool(),
+            (base::PoolStats{kMaxTcpConnections, kMaxTcpConnections, kMaxTcpConnections, 2}));
+  server_.CloseTcpConnection(TcpConnectionId{4});
+  EXPECT_EQ(server_.connection_pool().used, kMaxTcpConnections - 1);
+  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{1, 2}, now_).value(), TcpConnectionId{4});
 }
 
 TEST_F(CipEncapsulationServerTest, SendRRDataReachesTheRouterAndWrapsItsReply) {
@@ -445,6 +459,11 @@ TEST_F(CipEncapsulationServerTest, ListIdentityMaxDelayDefaultsAndFloor) {
   EXPECT_EQ(floored.send_at, now_ + 499'999);
   // A third one while two wait is dropped.
   EXPECT_EQ(server_.OnUdpDatagram(Header(0x63, 0, 0), kBroadcast, now_).action, UdpDecision::Action::kDrop);
+  EXPECT_EQ(server_.delayed_reply_pool(), (base::PoolStats{2, kMaxDelayedReplies, 2, 1}));
+  DueDatagram due;
+  while (server_.TakeDueDatagram(now_ + 2'000'000, due)) {
+  }
+  EXPECT_EQ(server_.delayed_reply_pool(), (base::PoolStats{0, kMaxDelayedReplies, 2, 1}));
 }
 
 TEST_F(CipEncapsulationServerTest, TcpOnlyCommandsOverUdp) {

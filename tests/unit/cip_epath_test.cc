@@ -37,8 +37,17 @@ TEST(CipEpath, SixteenAndThirtyTwoBitFormatsWithPadBytes) {
   EXPECT_EQ(path->instance, 0x12345678U);
   EXPECT_EQ(path->attribute, 0x010AU);
   EXPECT_EQ(path->member, 2U);
-  // A 32-bit attribute keeps all its bits: it must not alias attribute 1.
-  EXPECT_EQ(Decode("20 01 24 01 32 00 01 00 01 00")->attribute, 0x00010001U);
+  // Members and connection points have a 32-bit format too.
+  EXPECT_EQ(Decode("20 01 24 01 2A 00 01 00 01 00")->member, 0x00010001U);
+  EXPECT_EQ(Decode("20 04 2E 00 96 00 00 00")->instance, 150U);
+}
+
+// CIP reserves the 32-bit format for class and attribute IDs (both are 16-bit): refused like any reserved
+// format, even when the value would fit (the conformance suite's "32-bit class/attribute segment").
+TEST(CipEpath, ThirtyTwoBitClassAndAttributeAreReserved) {
+  EXPECT_EQ(Decode("22 00 01 00 00 00 24 01").status(), base::InvalidArgument());
+  EXPECT_EQ(Decode("20 01 24 01 32 00 01 00 00 00").status(), base::InvalidArgument());
+  EXPECT_EQ(Decode("20 01 24 01 32 00 01 00 01 00").status(), base::InvalidArgument());
 }
 
 TEST(CipEpath, ConnectionPointStandsForTheInstance) {
@@ -153,13 +162,17 @@ TEST(CipEpath, EncodedPathsDecodeToTheSameValues) {
   for (std::uint32_t value : {0U, 1U, 0xFFU, 0x100U, 0xFFFFU, 0x10000U, 0xFFFFFFFFU}) {
     std::array<std::uint8_t, 32> buffer{};
     ByteWriter out(buffer);
+    // Class and attribute IDs are 16-bit (their 32-bit format is reserved); instances and members are not.
+    const std::uint32_t attribute = value & 0xFFFFU;
     EncodeLogicalSegment(SegmentKind::kClass, 0x04, out);
     EncodeLogicalSegment(SegmentKind::kInstance, value, out);
-    EncodeLogicalSegment(SegmentKind::kAttribute, value, out);
+    EncodeLogicalSegment(SegmentKind::kAttribute, attribute, out);
+    EncodeLogicalSegment(SegmentKind::kMember, value, out);
     const base::Result<ApplicationPath> path = DecodeApplicationPath(out.written());
     ASSERT_TRUE(path.ok()) << value;
     EXPECT_EQ(path->instance, value);
-    EXPECT_EQ(path->attribute, value);
+    EXPECT_EQ(path->attribute, attribute);
+    EXPECT_EQ(path->member, value);
   }
 }
 

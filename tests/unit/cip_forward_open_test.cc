@@ -216,6 +216,7 @@ TEST(CipForwardOpenTest, ConnectionPathErrors) {
            "20 04 24 01 2C",                                                     // cut segment
            "20 04 24 01 80 04 00 00",                                            // data segment cut short
            "43 01 20 04 24 01",  // network segment (production inhibit time)
+           "22 00 04 00 00 00 24 01 2C 64 2C 96",  // 32-bit class (reserved format)
        }) {
     EXPECT_EQ(ParseConnectionPath(Hex(path)).extended, kExtendedInvalidRouteSegment) << path;
   }

@@ -156,6 +156,9 @@ TEST_F(CipMessageRouterTest, BadPaths) {
   EXPECT_EQ(Ask(Hex("0E")), Hex("8E 00 04 00"));                          // no path size
   EXPECT_EQ(Ask(Hex("")), Hex("80 00 04 00"));
   EXPECT_EQ(Ask(Hex("8E 03 20 70 24 01 30 01")), Hex("8E 00 08 00"));     // a reply is not a request
+  // The 32-bit format is reserved for class and attribute IDs: a path error, not class 0x70 or attribute 1.
+  EXPECT_EQ(Ask(Hex("0E 05 22 00 70 00 00 00 24 01 30 01")), Hex("8E 00 04 00"));
+  EXPECT_EQ(Ask(Hex("0E 05 20 70 24 01 32 00 01 00 00 00")), Hex("8E 00 04 00"));
 }
 
 TEST_F(CipMessageRouterTest, ReplyTooLargeForTheBuffer) {

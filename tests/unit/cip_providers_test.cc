@@ -9,6 +9,9 @@
 #include <map>
 #include <vector>
 
+#include "card_addressing_harness.h"
+#include "cip/byte_io.h"
+#include "cip/tcpip_interface_object.h"
 #include "fake_frame_port.h"
 #include "lwip_fixture.h"
 #include "parameter_writer.h"
@@ -52,7 +55,7 @@ class CipProvidersTest : public drive_link::test::RegisterProxyFixture {
     StartLoaded();
     writer_ = std::make_unique<ParameterWriter>(*proxy_);
     identity_ = std::make_unique<CardIdentity>(port_, *proxy_);
-    tcpip_ = std::make_unique<CardTcpIp>(netif_, *writer_, store_);
+    tcpip_ = std::make_unique<CardTcpIp>(netif_, addressing_, *writer_, store_);
     links_ = std::make_unique<CardEthernetLinks>(netif_, *writer_);
     ASSERT_TRUE(tcpip_->Configure(proxy_->config()).ok());
     ASSERT_TRUE(links_->Configure(proxy_->config()).ok());
@@ -70,6 +73,8 @@ class CipProvidersTest : public drive_link::test::RegisterProxyFixture {
 
   hal::test::FakeFramePort port_{kMac, 2};
   CardNetif netif_{port_};
+  hal::test::CountingRandom random_;
+  CardAddressing addressing_{netif_, clock_, random_};
   MemoryNvStore store_;
   std::unique_ptr<ParameterWriter> writer_;
   std::unique_ptr<CardIdentity> identity_;
@@ -159,7 +164,7 @@ TEST_F(CipProvidersTest, ExtrasKeptInTheCardsStoreAcrossARestart) {
   settings.static_configuration.name_server_2 = 0x0A000002;
   ASSERT_TRUE(settings.static_configuration.domain_name.Assign(std::string_view("plant.example")));
   ASSERT_TRUE(tcpip_->StoreSettings(settings).ok());
-  CardTcpIp restarted(netif_, *writer_, store_);
+  CardTcpIp restarted(netif_, addressing_, *writer_, store_);
   ASSERT_TRUE(restarted.Configure(proxy_->config()).ok());
   EXPECT_EQ(restarted.StoredSettings(), settings);
 }
@@ -174,7 +179,7 @@ TEST_F(CipProvidersTest, DamagedExtrasRecord_Defaults) {
 TEST_F(CipProvidersTest, DriveLinkDown_StoreRefused) {
   Start();  // the configuration is not read yet
   writer_ = std::make_unique<ParameterWriter>(*proxy_);
-  CardTcpIp tcpip(netif_, *writer_, store_);
+  CardTcpIp tcpip(netif_, addressing_, *writer_, store_);
   cip::TcpIpSettings settings = tcpip.StoredSettings();
   settings.startup = cip::StartupConfiguration::kBootp;
   EXPECT_EQ(tcpip.StoreSettings(settings).code(), base::StatusCode::kFailedPrecondition);
@@ -212,6 +217,13 @@ TEST_F(CipProvidersTest, ParameterWriter_QueueFull_NothingQueued) {
   }
   EXPECT_EQ(writer_->Enqueue(distinct).code(), base::StatusCode::kResourceExhausted);
   EXPECT_EQ(writer_->pending(), 1u);
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{1, ParameterWriter::kMaxQueued, 1, 1}));
+  distinct.pop_back();  // 31 new ones and the one queued: exactly full
+  EXPECT_TRUE(writer_->Enqueue(distinct).ok());
+  constexpr std::size_t kMax = ParameterWriter::kMaxQueued;
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
+  DrainWriter();
+  EXPECT_EQ(writer_->queue_pool(), (base::PoolStats{0, kMax, kMax, 1}));
 }
 
 TEST_F(CipProvidersTest, ParameterWriter_RefusedWriteCountedQueueGoesOn) {
@@ -298,6 +310,127 @@ TEST_F(CipProvidersTest, Identity_DriveModelFromFb05) {
   EXPECT_EQ(identity_->Model(), cip::DriveModel::kVfS15);
   identity_->OnDriveIdentity(0x04, 0x0110);
   EXPECT_EQ(identity_->Model(), cip::DriveModel::kVfMb1);
+}
+
+// ---- CardTcpIp: status bit 6 and attribute 11 from the card's ACD ----------------------------------
+
+class CardTcpIpAcdTest : public CipProvidersTest {
+ protected:
+  CardTcpIpAcdTest() {
+    netif_.Start(Ipv4Config{}, nullptr);
+    netif_.SetObserver(&addressing_);
+  }
+  ~CardTcpIpAcdTest() override { netif_.SetObserver(nullptr); }
+
+  // Polls the addressing at its deadlines up to `duration` from now on the fixture's clock (ACD's time
+  // base here).
+  void RunAddressing(hal::Micros duration) {
+    const hal::Micros end = Now() + duration;
+    for (int i = 0; i < 1000 && addressing_.NextDeadline() <= end; ++i) {
+      clock_.Set(std::max(Now(), addressing_.NextDeadline()));
+      netif_.PumpReceive(8);
+      addressing_.Poll(Now());
+    }
+    clock_.Set(end);
+    netif_.PumpReceive(8);
+    addressing_.Poll(Now());
+  }
+  void Receive(const std::vector<std::uint8_t>& frame) {
+    port_.Inject(frame);
+    netif_.PumpReceive(8);
+    addressing_.Poll(Now());
+  }
+  std::vector<std::uint8_t> Attribute(std::uint16_t id) {
+    cip::TcpIpInterfaceObject object(*tcpip_);
+    std::array<std::uint8_t, 64> buffer{};
+    cip::ByteWriter out(buffer);
+    object.GetInstanceAttribute(1, id, out);
+    EXPECT_TRUE(out.ok());
+    return {out.written().begin(), out.written().end()};
+  }
+
+  void StartAndClaim() {
+    StartCard();
+    ASSERT_TRUE(addressing_.Configure(test::ManualConfig({192, 168, 1, 12}, {255, 255, 255, 0})).ok());
+    RunAddressing(1100 * kMilli);
+    ASSERT_TRUE(addressing_.has_address());
+  }
+};
+
+constexpr hal::MacAddress kIntruder = {0x02, 0x12, 0x34, 0x56, 0x78, 0x9A};
+
+// The intruder's gratuitous ARP for 192.168.1.12, and the 28-byte ARP PDU inside it.
+std::vector<std::uint8_t> IntruderAnnouncement() {
+  return test::ArpFrameBytes(1, test::kBroadcastMac, kIntruder, kIntruder, 0xC0A8010C, test::kZeroMac, 0xC0A8010C);
+}
+const std::vector<std::uint8_t> kIntruderPdu = {0x00, 0x01, 0x08, 0x00, 0x06, 0x04, 0x00, 0x01,        // request
+                                                0x02, 0x12, 0x34, 0x56, 0x78, 0x9A, 192,  168, 1, 12,  // sender
+                                                0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 192,  168, 1, 12};
+
+TEST_F(CardTcpIpAcdTest, NoConflict_StatusBit6ClearAttribute11Zero) {
+  StartAndClaim();
+  EXPECT_FALSE(tcpip_->AddressConflictDetected());
+  EXPECT_EQ(Attribute(1), (std::vector<std::uint8_t>{0x01, 0x00, 0x00, 0x00}));  // valid configuration
+  EXPECT_EQ(Attribute(11), std::vector<std::uint8_t>(35, 0));
+}
+
+TEST_F(CardTcpIpAcdTest, YieldedInUse_Bit6AndAttribute11Exact_ClearedBySet) {
+  StartAndClaim();
+  RunAddressing(5 * kSecond);
+  Receive(IntruderAnnouncement());  // defended: a conflict is recorded, the address kept
+  EXPECT_FALSE(tcpip_->AddressConflictDetected());
+  EXPECT_EQ(Attribute(1), (std::vector<std::uint8_t>{0x01, 0x00, 0x00, 0x00}));
+  RunAddressing(2 * kSecond);
+  Receive(IntruderAnnouncement());  // yielded
+  ASSERT_FALSE(addressing_.has_address());
+  EXPECT_TRUE(tcpip_->AddressConflictDetected());
+  // Bit 6 (address conflict); bits 0-3 are 0: no valid configuration in use.
+  EXPECT_EQ(Attribute(1), (std::vector<std::uint8_t>{0x40, 0x00, 0x00, 0x00}));
+
+  const cip::AcdConflict conflict = tcpip_->LastConflict();
+  EXPECT_EQ(conflict.acd_activity, 2);  // OngoingDetection
+  EXPECT_EQ(conflict.remote_mac, kIntruder);
+  EXPECT_EQ(std::vector<std::uint8_t>(conflict.arp_pdu.begin(), conflict.arp_pdu.end()), kIntruderPdu);
+  std::vector<std::uint8_t> expected = {0x02, 0x02, 0x12, 0x34, 0x56, 0x78, 0x9A};
+  expected.insert(expected.end(), kIntruderPdu.begin(), kIntruderPdu.end());
+  ASSERT_EQ(expected.size(), 35u);
+  EXPECT_EQ(Attribute(11), expected);
+
+  // Set_Attribute_Single 11 with 35 zeros clears the record; the conflict itself (bit 6) stays until
+  // the address is claimed again.
+  cip::TcpIpInterfaceObject object(*tcpip_);
+  const std::vector<std::uint8_t> zeros(35, 0);
+  cip::ByteReader value(zeros);
+  EXPECT_TRUE(object.SetInstanceAttribute(1, 11, value).ok());
+  EXPECT_EQ(Attribute(11), zeros);
+  EXPECT_EQ(addressing_.last_conflict(), net::AcdConflictRecord{});
+  EXPECT_TRUE(tcpip_->AddressConflictDetected());
+
+  // A minute later ACD probes again; the intruder has gone: the address is back and bit 6 clear.
+  RunAddressing(61 * kSecond);
+  EXPECT_TRUE(addressing_.has_address());
+  EXPECT_FALSE(tcpip_->AddressConflictDetected());
+  EXPECT_EQ(Attribute(1), (std::vector<std::uint8_t>{0x01, 0x00, 0x00, 0x00}));
+}
+
+TEST_F(CardTcpIpAcdTest, ConflictWhileProbing_Activity1_ClearLastConflict) {
+  StartCard();
+  ASSERT_TRUE(addressing_.Configure(test::ManualConfig({192, 168, 1, 12}, {255, 255, 255, 0})).ok());
+  RunAddressing(300 * kMilli);
+  Receive(IntruderAnnouncement());
+  EXPECT_TRUE(tcpip_->AddressConflictDetected());
+  EXPECT_EQ(Attribute(1), (std::vector<std::uint8_t>{0x40, 0x00, 0x00, 0x00}));
+  const std::vector<std::uint8_t> attribute = Attribute(11);
+  ASSERT_EQ(attribute.size(), 35u);
+  EXPECT_EQ(attribute[0], 1);  // ProbeIpv4Address
+  EXPECT_EQ(std::vector<std::uint8_t>(attribute.begin() + 1, attribute.begin() + 7),
+            std::vector<std::uint8_t>(kIntruder.begin(), kIntruder.end()));
+  EXPECT_EQ(std::vector<std::uint8_t>(attribute.begin() + 7, attribute.end()), kIntruderPdu);
+  tcpip_->ClearLastConflict();
+  EXPECT_EQ(tcpip_->LastConflict().acd_activity, 0);
+  EXPECT_EQ(tcpip_->LastConflict().remote_mac, cip::MacAddress{});
+  EXPECT_EQ(tcpip_->LastConflict().arp_pdu, (std::array<std::uint8_t, 28>{}));
+  EXPECT_EQ(Attribute(11), std::vector<std::uint8_t>(35, 0));
 }
 
 }  // namespace

@@ -129,6 +129,8 @@ TEST_F(EipServiceTest, PeerCloses_SessionEnds) {
   EXPECT_EQ(card_.cip.encapsulation().session_count(), 0u);
   EXPECT_EQ(card_.cip.encapsulation().connection_count(), 0u);
   EXPECT_EQ(service_.counters().closed_by_peer, 1u);
+  EXPECT_EQ(service_.slot_pool(), (base::PoolStats{0, cip::kMaxTcpConnections, 1, 0}));
+  EXPECT_EQ(card_.cip.encapsulation().session_pool(), (base::PoolStats{0, cip::kMaxSessions, 1, 0}));
 }
 
 TEST_F(EipServiceTest, ConnectionBeyondTheLimit_ResetOthersStillServed) {
@@ -140,6 +142,10 @@ TEST_F(EipServiceTest, ConnectionBeyondTheLimit_ResetOthersStillServed) {
   TcpTestClient& extra = Connect(kPort);
   EXPECT_TRUE(extra.reset);
   EXPECT_EQ(service_.counters().refused, 1u);
+  constexpr std::size_t kMax = cip::kMaxTcpConnections;
+  EXPECT_EQ(service_.slot_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
+  // The binding refused it before the core was asked.
+  EXPECT_EQ(card_.cip.encapsulation().connection_pool(), (base::PoolStats{kMax, kMax, kMax, 0}));
   Send(*open.front(), kListServices);
   EXPECT_EQ(open.front()->received, kServicesReply);
 }

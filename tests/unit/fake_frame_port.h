@@ -44,6 +44,7 @@ class FakeFramePort final : public FramePort {
     inbox_.push_back(Sent{port, std::move(frame)});
   }
   void SetLink(PortId port, bool up) { links_[PortIndex(port)].up = up; }
+  void SetSpeed(PortId port, LinkSpeed speed) { links_[PortIndex(port)].speed = speed; }
   std::vector<Sent>& sent() { return sent_; }
   std::size_t pending() const { return inbox_.size(); }
 

@@ -110,11 +110,18 @@ TEST(HostOptions, TcpKeepalive_Parsed) {
   EXPECT_EQ(o.tcp_keepalive.count, 1u);
 }
 
+TEST(HostOptions, TapWithoutIp_TheInvertersAddressingDecides) {
+  HostOptions o;
+  std::string error;
+  ASSERT_EQ(Parse({"--net", "tap:x", "--param", "c504=2"}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_FALSE(o.ip_given);
+  EXPECT_EQ(o.ip, 0u);
+}
+
 TEST(HostOptions, BadValues_ErrorNamesTheFlag) {
   const std::vector<std::pair<std::vector<const char*>, std::string>> cases = {
       {{"--net", "eth0"}, "invalid value for --net: 'eth0'"},
       {{"--net", "tap:a,tap:b,tap:c"}, "invalid value for --net: 'tap:a,tap:b,tap:c'"},
-      {{"--net", "tap:x"}, "--ip is required with --net tap"},
       {{"--ip", "10.0.0.1"}, "invalid value for --ip: '10.0.0.1'"},
       {{"--ip", "10.0.0.256/24"}, "invalid value for --ip: '10.0.0.256/24'"},
       {{"--ip", "10.0.0.1/31"}, "invalid value for --ip: '10.0.0.1/31'"},

@@ -45,7 +45,7 @@ TEST_F(SimInverter, ExistingFile_LoadedAndPresetsIgnored) {
 }
 
 TEST_F(SimInverter, CorruptFile_MovedAsideAndTheInverterStartsNew) {
-  WriteText(FilePath(), "format 1\nmodel vf-mb1\nreg 0009 fifty 1\n");
+  WriteText(FilePath(), EepromFileContents("format 1\nmodel vf-mb1\nreg 0009 fifty 1\n"));
   config_.presets = {Preset("acc=50", reg::kAcc, 50)};
   ASSERT_TRUE(Start()) << error_;
   EXPECT_TRUE(inverter_->started_new());
@@ -54,14 +54,45 @@ TEST_F(SimInverter, CorruptFile_MovedAsideAndTheInverterStartsNew) {
   EXPECT_EQ(Log(), "ipe002z-host: warning: " + FilePath() +
                        " is not usable (it is not a valid EEPROM image); moved to " + FilePath() +
                        ".bad; the inverter starts from its factory defaults\n");
-  EXPECT_EQ(ReadText(FilePath() + ".bad"), "format 1\nmodel vf-mb1\nreg 0009 fifty 1\n");
+  EXPECT_EQ(ReadText(FilePath() + ".bad"), EepromFileContents("format 1\nmodel vf-mb1\nreg 0009 fifty 1\n"));
   sim::InverterModel check(sim::Model::kVfMb1);
-  EXPECT_TRUE(check.LoadEeprom(ReadText(FilePath())));
+  const std::string stored = ReadText(FilePath());
+  ASSERT_TRUE(EepromImageOf(stored).has_value());
+  EXPECT_TRUE(check.LoadEeprom(*EepromImageOf(stored)));
+}
+
+TEST_F(SimInverter, FileWithoutItsCheckLine_MovedAsideAndTheInverterStartsNew) {
+  // A whole image, but no check line: it cannot prove it is whole (an older version wrote it, or it
+  // was cut short after its last complete line), so none of it is used.
+  sim::InverterModel old(sim::Model::kVfMb1);
+  ASSERT_TRUE(old.Write(reg::kAcc, 50, sim::WriteTarget::kRamAndEeprom).ok());
+  WriteText(FilePath(), old.SerializeEeprom());
+  ASSERT_TRUE(Start());
+  EXPECT_TRUE(inverter_->started_new());
+  EXPECT_EQ(Read(reg::kAcc), 100);
+  EXPECT_EQ(Log(), "ipe002z-host: warning: " + FilePath() +
+                       " is not usable (its check line is missing or does not match (cut short, damaged, or from"
+                       " an older version)); moved to " + FilePath() +
+                       ".bad; the inverter starts from its factory defaults\n");
+}
+
+TEST(SimInverterEepromFile, CheckLineIsTheCrcOfEverythingBeforeIt) {
+  // CRC-32 of "123456789" is 0xcbf43926 (the standard check value).
+  EXPECT_EQ(EepromFileContents("123456789"), "123456789check cbf43926\n");
+  EXPECT_EQ(EepromFileContents("a\n"), "a\ncheck ddeaa107\n");
+  EXPECT_EQ(EepromImageOf("a\ncheck ddeaa107\n"), std::optional<std::string_view>("a\n"));
+  EXPECT_EQ(EepromImageOf("check 00000000\n"), std::optional<std::string_view>(""));
+  EXPECT_EQ(EepromImageOf("b\ncheck ddeaa107\n"), std::nullopt);   // another image
+  EXPECT_EQ(EepromImageOf("a\ncheck DDEAA107\n"), std::nullopt);   // only lowercase
+  EXPECT_EQ(EepromImageOf("a\ncheck ddeaa107"), std::nullopt);      // no line end
+  EXPECT_EQ(EepromImageOf("a\ncheck ddeaa107\n\n"), std::nullopt);  // anything after it
+  EXPECT_EQ(EepromImageOf("a\n"), std::nullopt);
+  EXPECT_EQ(EepromImageOf(""), std::nullopt);
 }
 
 TEST_F(SimInverter, AnotherModelsImage_MovedAsideWithTheReason) {
   sim::InverterModel s15(sim::Model::kVfS15);
-  WriteText(FilePath(), s15.SerializeEeprom());
+  WriteText(FilePath(), EepromFileContents(s15.SerializeEeprom()));
   ASSERT_TRUE(Start());
   EXPECT_TRUE(inverter_->started_new());
   EXPECT_EQ(Log(), "ipe002z-host: warning: " + FilePath() +
@@ -166,7 +197,7 @@ TEST_F(SimInverter, StateDirNotWritable_WarnsOnceAndRuns) {
   EXPECT_EQ(inverter_->saves(), 0u);
   const std::string warning = Log();
   EXPECT_EQ(warning.rfind("ipe002z-host: warning: cannot store the inverter's EEPROM (" + dir_ +
-                              "/blocked/inverter/vf-mb1.eeprom.tmp: Not a directory); retrying\n",
+                              "/blocked/inverter: Not a directory); retrying\n",
                           0),
             0u)
       << warning;

@@ -27,6 +27,8 @@ TEST(ModbusServer, NinthClient_RefusedOthersServed) {
   EXPECT_EQ(ninth.status().code(), base::StatusCode::kResourceExhausted);
   EXPECT_EQ(h.server.counters().refused, 1u);
   EXPECT_EQ(h.server.open_connections(), Server::kMaxClients);
+  EXPECT_EQ(h.server.client_pool(),
+            (base::PoolStats{Server::kMaxClients, Server::kMaxClients, Server::kMaxClients, 1}));
   for (ConnectionId id : ids) EXPECT_EQ(h.Exchange(id, kReadVersion), kVersionAnswer);
   // A slot freed is a slot for the next client.
   h.server.Close(ids[3]);
@@ -34,6 +36,10 @@ TEST(ModbusServer, NinthClient_RefusedOthersServed) {
   ASSERT_TRUE(again.ok());
   EXPECT_EQ(*again, ids[3]);
   EXPECT_EQ(h.Exchange(*again, kReadVersion), kVersionAnswer);
+  for (ConnectionId id : ids) h.server.Close(id);
+  h.server.Close(ids[0]);  // twice: no slot is given back twice
+  EXPECT_EQ(h.server.client_pool(), (base::PoolStats{0, Server::kMaxClients, Server::kMaxClients, 1}));
+  EXPECT_EQ(h.server.open_connections(), 0u);
 }
 
 TEST(ModbusServer, ClientsRegisterOfUnit251_CountsOpenConnections) {

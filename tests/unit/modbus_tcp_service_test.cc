@@ -99,6 +99,10 @@ TEST_F(ModbusTcpServiceTest, NinthClient_ResetOthersStillServed) {
   EXPECT_TRUE(ninth.reset);
   EXPECT_EQ(service_.counters().refused, 1u);
   EXPECT_EQ(h_.server.open_connections(), modbus::Server::kMaxClients);
+  constexpr std::size_t kMax = modbus::Server::kMaxClients;
+  EXPECT_EQ(service_.slot_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
+  // The service asks the server first: the server's table is what refused the ninth.
+  EXPECT_EQ(h_.server.client_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
   for (TestClient* client : eight) {
     EXPECT_FALSE(client->reset);
     Send(*client, kReadVersion);
@@ -114,6 +118,8 @@ TEST_F(ModbusTcpServiceTest, ClientCloses_SlotFreed) {
   Pump();
   EXPECT_EQ(h_.server.open_connections(), 0u);
   EXPECT_EQ(service_.counters().closed_by_peer, 1u);
+  EXPECT_EQ(service_.slot_pool(), (base::PoolStats{0, modbus::Server::kMaxClients, 1, 0}));
+  EXPECT_EQ(h_.server.client_pool(), (base::PoolStats{0, modbus::Server::kMaxClients, 1, 0}));
 }
 
 TEST_F(ModbusTcpServiceTest, BadHeader_EarlierAnswerThenFin) {

@@ -281,6 +281,21 @@ TEST_F(AcdFixture, InUseDefendOnceThenYieldOnASecondConflictWithinTenSeconds) {
   EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), expected);
 }
 
+TEST_F(AcdFixture, ClaimAnnouncesAtOnceWithoutProbingThenDefends) {
+  acd.Start(kOtherAddress, 0);  // an earlier transaction: Claim replaces it
+  acd.Claim(kAddress, 5 * kS);
+  EXPECT_EQ(acd.State(), AcdState::kAnnouncing);
+  EXPECT_TRUE(acd.AddressUsable());
+  EXPECT_EQ(acd.NextDeadline(), 5 * kS);
+  EXPECT_EQ(PollAt(5 * kS), std::vector<Bytes>{kAnnouncementBytes});
+  EXPECT_EQ(acd.NextDeadline(), 7 * kS);
+  EXPECT_EQ(PollAt(7 * kS), std::vector<Bytes>{kAnnouncementBytes});
+  EXPECT_EQ(acd.State(), AcdState::kOngoing);
+  EXPECT_EQ(acd.OnFrame(OtherAnnounces(kAddress), 8 * kS), AcdEvent::kDefended);
+  EXPECT_EQ(acd.OnFrame(OtherAnnounces(kAddress), 9 * kS), AcdEvent::kYielded);
+  EXPECT_TRUE(acd.DuplicateDetected());
+}
+
 TEST_F(AcdFixture, ConflictsMoreThanTenSecondsApartAreEachDefended) {
   ClaimAddress();
   EXPECT_EQ(acd.OnFrame(OtherAnnounces(kAddress), 20 * kS), AcdEvent::kDefended);

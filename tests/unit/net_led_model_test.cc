@@ -241,7 +241,7 @@ TEST(LedModelTest, ModelRunsTheTestThenFollowsTheInputsFromTheTestEnd) {
   EXPECT_EQ(model.ColorAt(Led::kNetworkStatus, t0 + 800 * kMs), LedColor::kRed);
   EXPECT_EQ(model.LinkTestColor(t0), LedColor::kGreen);
   EXPECT_EQ(model.LinkTestColor(t0 + 600 * kMs), LedColor::kOff);
-  // The test is over: LNK goes back to LinkLeds, NS starts its first flash at the test end.
+  // The test is over: LNK goes back to the link colours, NS starts its first flash at the test end.
   const Micros end = t0 + kPowerUpTestDuration;
   EXPECT_FALSE(model.PowerUpTestRunning(end));
   EXPECT_EQ(model.LinkTestColor(end), std::nullopt);

@@ -382,7 +382,9 @@ TEST_F(RegisterProxyTest, PoolLimitOrderAndCancel) {
   RecordingListener extra;
   EXPECT_EQ(proxy_->Read(0x0003, extra).status().code(), base::StatusCode::kResourceExhausted);
   EXPECT_EQ(proxy_->counters().pool_full, 1U);
+  EXPECT_EQ(proxy_->access_pool(), (base::PoolStats{kMaxPendingAccesses, kMaxPendingAccesses, kMaxPendingAccesses, 1}));
   proxy_->Cancel(listeners[3]);  // waiting: forgotten at once
+  EXPECT_EQ(proxy_->access_pool().used, kMaxPendingAccesses - 1);
   const std::uint32_t cycles = proxy_->counters().cycles;
   RunFor(kSecond);
   for (std::size_t i = 0; i < listeners.size(); ++i) {
@@ -396,6 +398,8 @@ TEST_F(RegisterProxyTest, PoolLimitOrderAndCancel) {
   }
   // The cycle kept running while 7 accesses went through (the link alternates them).
   EXPECT_GE(proxy_->counters().cycles - cycles, 3U);
+  // Every completion delivered gave its slot back.
+  EXPECT_EQ(proxy_->access_pool(), (base::PoolStats{0, kMaxPendingAccesses, kMaxPendingAccesses, 1}));
   for (RecordingListener& l : listeners) EXPECT_TRUE(proxy_->Read(0x0003, l).ok());  // the pool is free again
   for (RecordingListener& l : listeners) proxy_->Cancel(l);
 }

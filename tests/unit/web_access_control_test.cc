@@ -224,6 +224,11 @@ TEST_F(AccessControlTest, NinthLoginEvictsTheLeastRecentlyUsed) {
   EXPECT_EQ(access_.Lookup(sessions[0], ++now), AccessLevel::kNone);
   EXPECT_EQ(access_.Lookup(sessions[2], now), AccessLevel::kRead);
   EXPECT_EQ(access_.Lookup(tenth, now), AccessLevel::kRead);
+  // Evicting is not refusing: a login always gets a session.
+  EXPECT_EQ(access_.evictions(), 2U);
+  EXPECT_EQ(access_.session_pool(now), (base::PoolStats{kMaxSessions, kMaxSessions, kMaxSessions, 0}));
+  // Fifteen idle minutes later every slot is free again.
+  EXPECT_EQ(access_.session_pool(now + kSessionIdle), (base::PoolStats{0, kMaxSessions, kMaxSessions, 0}));
 }
 
 TEST_F(AccessControlTest, ALoggedOutSlotIsReusedBeforeEvicting) {
@@ -239,6 +244,7 @@ TEST_F(AccessControlTest, ALoggedOutSlotIsReusedBeforeEvicting) {
     EXPECT_EQ(access_.Lookup(sessions[i], kStart + 12), expected) << i;
   }
   EXPECT_EQ(access_.session_count(kStart + 12), 8U);
+  EXPECT_EQ(access_.evictions(), 0U);  // the logged-out slot was free
 }
 
 TEST_F(AccessControlTest, CsrfTokenBelongsToItsSession) {

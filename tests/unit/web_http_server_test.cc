@@ -263,6 +263,9 @@ TEST_F(WebHttpServerTest, SlotsAreLimitedAndTheLongestIdleIsEvictable) {
   server.Close(ids[1]);
   EXPECT_EQ(*server.Open(now), ids[1]);
   EXPECT_EQ(server.open_clients(), kMaxHttpClients);
+  EXPECT_EQ(server.client_pool(), (base::PoolStats{kMaxHttpClients, kMaxHttpClients, kMaxHttpClients, 1}));
+  for (HttpClientId id : ids) server.Close(id);
+  EXPECT_EQ(server.client_pool(), (base::PoolStats{0, kMaxHttpClients, kMaxHttpClients, 1}));
   EXPECT_EQ(Text(HttpServer::BusyResponse()),
             "HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nRetry-After: 1\r\n"
             "Content-Length: 23\r\nConnection: close\r\n\r\n{\"error\":\"server busy\"}");

@@ -32,6 +32,7 @@
 #include <optional>
 #include <span>
 
+#include "base/pool_stats.h"
 #include "cip/cip_device.h"
 #include "cip/forward_open.h"
 #include "cip/io_connection.h"
@@ -114,6 +115,12 @@ class ConnectionManager final : public AttributeHandler,
   const ConnectionCounters& counters() const { return counters_; }
   std::uint32_t missed_productions() const { return missed_productions_; }
   std::uint32_t dropped_datagrams() const { return dropped_datagrams_; }
+  // The fixed pools (docs/robustness.md "Exhaustion"): the connection table (refused: 0x0113, table
+  // full), class 3 reply stores (refused: 0x011A, options.max_explicit_connections reached) and
+  // productions (refused: 0x0113, no multicast group left for a new multicast production).
+  base::PoolStats connection_pool() const { return table_marks_.Stats(ActiveConnections(), kMaxCipConnections); }
+  base::PoolStats explicit_pool() const;
+  base::PoolStats production_pool() const;
 
   // ConnectionCountProvider (Message Router attribute 3)
   std::uint16_t ActiveConnections() const override;
@@ -183,6 +190,8 @@ class ConnectionManager final : public AttributeHandler,
     int shared_producer = kNone;
     std::uint32_t multicast_group = 0;
     std::size_t multicast_index = 0;
+    // Which pool refused it, when CheckCapacity did (for the pool statistics).
+    enum class Exhausted : std::uint8_t { kNone, kTable, kExplicit, kMulticastGroups } exhausted = Exhausted::kNone;
   };
 
   ServiceStatus ForwardOpen(const ServiceRequest& request, ByteWriter& reply, bool large);
@@ -199,6 +208,9 @@ class ConnectionManager final : public AttributeHandler,
   void ReleaseUnusedProducers();
   void NotifyChanged();
 
+  void NoteExhausted(const Opening& opening);
+  std::size_t ExplicitInUse() const;
+  std::size_t ActiveProducers() const;
   int FindFree() const;
   int FindByTriad(const ConnectionTriad& triad) const;
   int FindMulticastProducer(std::uint32_t point) const;
@@ -224,6 +236,9 @@ class ConnectionManager final : public AttributeHandler,
   std::array<bool, kMaxExplicitConnections> explicit_in_use_{};
   std::array<std::array<std::uint8_t, kMaxExplicitReply>, kMaxExplicitConnections> explicit_replies_{};
   std::array<std::uint8_t, kMaxIoDatagram> datagram_{};
+  base::PoolWatermark table_marks_;
+  base::PoolWatermark explicit_marks_;
+  base::PoolWatermark production_marks_;
   AttributeObject object_;
 };
 

@@ -29,6 +29,7 @@
 #include <optional>
 #include <span>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "cip/cpf.h"
 #include "cip/encapsulation.h"
@@ -126,6 +127,12 @@ class EncapsulationServer {
 
   std::size_t session_count() const;
   std::size_t connection_count() const;
+  // The fixed pools (docs/robustness.md "Exhaustion"): TCP connections (refused: OpenTcpConnection
+  // found none free), sessions (refused: RegisterSession answered 0x0002), delayed broadcast
+  // ListIdentity replies (refused: the request was dropped).
+  base::PoolStats connection_pool() const { return connection_marks_.Stats(connection_count(), kMaxTcpConnections); }
+  base::PoolStats session_pool() const { return session_marks_.Stats(session_count(), kMaxSessions); }
+  base::PoolStats delayed_reply_pool() const { return delayed_marks_.Stats(delayed_count(), kMaxDelayedReplies); }
 
  private:
   struct Connection {
@@ -160,6 +167,7 @@ class EncapsulationServer {
                            std::span<const std::uint8_t> body, RequestContext& context);
   std::uint32_t NewSessionHandle();
   bool HandleInUse(std::uint32_t handle) const;
+  std::size_t delayed_count() const;
   void EndSession(Connection& connection);
   std::size_t ScheduleListIdentity(const EncapsulationHeader& request, const UdpSource& source,
                                    hal::Micros now, hal::Micros& send_at);
@@ -173,6 +181,9 @@ class EncapsulationServer {
   std::array<DelayedReply, kMaxDelayedReplies> delayed_{};
   std::array<std::uint8_t, kMaxReplyMessage> tcp_reply_{};
   std::array<std::uint8_t, kMaxReplyMessage> udp_reply_{};
+  base::PoolWatermark connection_marks_;
+  base::PoolWatermark session_marks_;
+  base::PoolWatermark delayed_marks_;
 };
 
 // Writes a reply with no data: the request's header echoed with `status` and length 0.

@@ -5,7 +5,8 @@
 // understands:
 //   port        000E PPPP  [link size if E][16-bit port if PPPP = 15][link address][pad to even]
 //   logical     001T TTFF  class 0, instance 1, member 2, connection point 3, attribute 4: 8-bit value,
-//                          or a pad byte and a 16- or 32-bit value (FF = 0, 1, 2; 3 is reserved);
+//                          or a pad byte and a 16- or 32-bit value (FF = 0, 1, 2; 3 is reserved, and so
+//                          is the 32-bit format of a class or an attribute);
 //                          special 5 = electronic key (format 4, 8 bytes); service ID 6 (8-bit)
 //   data        1000 0000  simple data: word count, words
 //   symbolic    1001 0001  ANSI extended symbol: length, characters, pad to even
@@ -86,7 +87,8 @@ struct ApplicationPath {
 base::Result<ApplicationPath> DecodeApplicationPath(std::span<const std::uint8_t> padded_path);
 
 // Encoders for what the card itself sends (Port and TCP/IP object attributes, tests): logical segments
-// in the smallest format that holds the value, and a port segment.
+// in the smallest format that holds the value (class and attribute values must fit 16 bits: their 32-bit
+// format is reserved), and a port segment.
 void EncodeLogicalSegment(SegmentKind kind, std::uint32_t value, ByteWriter& out);
 void EncodePortSegment(std::uint16_t port, std::span<const std::uint8_t> link_address, ByteWriter& out);
 

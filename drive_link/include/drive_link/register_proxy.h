@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "drive_link/card_config.h"
 #include "drive_link/link_client.h"
@@ -138,6 +139,9 @@ class RegisterProxy final : public DriveRegisters,
   std::uint16_t ethernet_error() const { return c536_; }
 
   const ProxyCounters& counters() const { return counters_; }
+  // The on-demand access pool (docs/robustness.md "Exhaustion"); refused: Read/Write answered
+  // kResourceExhausted (counters().pool_full).
+  base::PoolStats access_pool() const { return access_marks_.Stats(AccessesInUse(), kMaxPendingAccesses); }
   const LinkClient& link() const { return link_; }
 
   // --- DriveRegisters ---
@@ -273,6 +277,7 @@ class RegisterProxy final : public DriveRegisters,
   base::Result<AccessToken> Accept(const Transaction& transaction, AccessListener& listener,
                                    AccessError local_refusal);
   void FinishAccess(Access& access, AccessError error, std::uint16_t value);
+  std::size_t AccessesInUse() const;
   void SubmitAccess();
   void OnAccessComplete(Access& access, const Completion& completion);
   AccessError MapError(const Access& access, const Completion& completion) const;
@@ -374,6 +379,7 @@ class RegisterProxy final : public DriveRegisters,
 
   // On-demand accesses.
   std::array<Access, kMaxPendingAccesses> accesses_{};
+  base::PoolWatermark access_marks_;
   AccessToken next_token_ = 1;
   std::uint32_t next_order_ = 0;
   bool access_on_link_ = false;

@@ -266,8 +266,13 @@
 #define LWIP_DHCP 1
 
 /* DHCP_DOES_ARP_CHECK: 1 = probe an offered address with ARP before using it and decline it if
- * another host answers (lwIP 2.1 has no full RFC 5227 ACD; the firmware adds that if required). */
+ * another host answers. lwIP 2.1 has no full RFC 5227 ACD: the firmware's ACD (net/acd.h) claims
+ * the bound address and defends it (docs/network.md "Addressing"). */
 #define DHCP_DOES_ARP_CHECK 1
+
+/* LWIP_HOOK_FILENAME: lwip_hooks.h adds the DHCP client identifier (option 61) and, in DISCOVER,
+ * the host name (option 12) from the device name c081-c096 (LWIP_HOOK_DHCP_APPEND_OPTIONS). */
+#define LWIP_HOOK_FILENAME "lwip_hooks.h"
 
 /* LWIP_DHCP_GET_NTP_SRV: 0 = do not request NTP servers (no SNTP client on the card). */
 #define LWIP_DHCP_GET_NTP_SRV 0

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <span>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "drive_link/card_config.h"
 #include "drive_link/register_access.h"
@@ -73,6 +74,9 @@ class Server {
   hal::Micros NextDeadline() const;
 
   std::size_t open_connections() const { return shared_.clients; }
+  // The client table (docs/robustness.md "Exhaustion"), counted from the slots; refused: Open answered
+  // kResourceExhausted.
+  base::PoolStats client_pool() const;
   LossState loss_state() const { return shared_.loss.state(); }
   const ServerCounters& counters() const { return shared_.counters; }
   const drive_link::CardConfig& config() const { return shared_.config; }
@@ -83,6 +87,7 @@ class Server {
 
   ServerShared shared_;
   std::array<Connection, kMaxClients> connections_;
+  base::PoolWatermark client_marks_;
 };
 
 }  // namespace modbus

@@ -157,6 +157,10 @@ class Acd {
   // Starts probing for `address` (manual, BOOTP or DHCP); forgets any earlier conflict state except
   // LastConflict(). The first probe goes out from Poll after the probe wait.
   void Start(Ipv4Address address, hal::Micros now);
+  // Takes `address` without probing (kAnnouncing from `now`): for an address another check has already
+  // probed (lwIP's DHCP client ARP-checks an offered address before binding it). Ongoing detection and
+  // the defence then run as after a probe.
+  void Claim(Ipv4Address address, hal::Micros now);
   // Back to kIdle (communication reset, address change): nothing more is sent.
   void Stop();
   // A port's link came up. While the address is in use, starts a semi-active probe burst.

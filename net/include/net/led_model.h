@@ -1,6 +1,6 @@
 // The MS and NS indicators (manual §2.4, NET-5): one state model for both protocols. The card's
 // condition goes in as LedInputs; out come, per LED, a pattern with its colour (LedIndication) and the
-// colour the LED shows at any instant. LNK (one per port) stays with firmware/link_leds; it only takes
+// colour the LED shows at any instant. LNK (one per port) is firmware/card_indicators'; it only takes
 // its power-up test colours from here (LinkTestColor), so that all four LEDs run one test.
 //
 // Tables (§2.4), highest priority first; "test" = the power-up test, which overrides everything:
@@ -125,7 +125,7 @@ class LedModel {
   // MS and NS only (kOff / off for the LNK LEDs): kPowerUpTest while the test runs.
   LedIndication Indication(hal::Led led, hal::Micros now) const;
   hal::LedColor ColorAt(hal::Led led, hal::Micros now) const;
-  // The colour a LNK LED shows while the test runs; nullopt once it is over (LinkLeds then shows the link).
+  // The colour a LNK LED shows while the test runs; nullopt once it is over (CardIndicators then shows the link).
   std::optional<hal::LedColor> LinkTestColor(hal::Micros now) const;
 
   // The earliest instant after `now` at which any LED this model drives (MS, NS, LNK during the test)

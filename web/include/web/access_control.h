@@ -23,6 +23,7 @@
 #include <span>
 #include <string_view>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "hal/clock.h"
 #include "hal/random.h"
@@ -101,6 +102,10 @@ class AccessControl {
   bool defaults() const { return passwords_.defaults(); }
   // Sessions not yet ended at `now` (for statistics and tests).
   std::size_t session_count(hal::Micros now) const;
+  // The session table (docs/robustness.md "Exhaustion"): sessions not ended at `now`. Never refused: a
+  // login into a full table evicts the least recently used session (counted in evictions()).
+  base::PoolStats session_pool(hal::Micros now) const { return session_marks_.Stats(session_count(now), kMaxSessions); }
+  std::uint32_t evictions() const { return evictions_; }
 
  private:
   struct Session {
@@ -125,6 +130,8 @@ class AccessControl {
   std::array<Session, kMaxSessions> sessions_{};
   std::uint32_t failures_ = 0;  // in a row, login and elevate together
   hal::Micros retry_at_ = 0;    // with failures_ >= kFreeFailures: no check before this
+  base::PoolWatermark session_marks_;
+  std::uint32_t evictions_ = 0;
 };
 
 // The value of the ipe_session cookie in a Cookie header value ("a=1; ipe_session=...; b=2"), the first

@@ -22,6 +22,7 @@
 #include <optional>
 #include <span>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "hal/clock.h"
 #include "web/http_request.h"
@@ -107,6 +108,9 @@ class HttpServer {
 
   const HttpServerCounters& counters() const { return counters_; }
   std::size_t open_clients() const;
+  // The client table (docs/robustness.md "Exhaustion"); refused: Open found every slot taken (the
+  // transport then evicts an idle connection or answers 503).
+  base::PoolStats client_pool() const { return client_marks_.Stats(open_clients(), kMaxHttpClients); }
 
  private:
   struct Client {
@@ -135,6 +139,7 @@ class HttpServer {
   HttpHandler& handler_;
   std::array<Client, kMaxHttpClients> clients_{};
   HttpServerCounters counters_;
+  base::PoolWatermark client_marks_;
 };
 
 }  // namespace web

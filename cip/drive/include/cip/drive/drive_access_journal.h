@@ -46,6 +46,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "base/pool_stats.h"
 #include "base/status.h"
 #include "cip/encapsulation_server.h"
 #include "cip/explicit_messaging.h"
@@ -96,6 +97,9 @@ class DriveAccessJournal final : public drive_link::AccessListener, public Reque
   std::uint32_t completions_ignored() const { return ignored_; }
   // Requesters that currently hold entries.
   std::size_t active_requesters() const;
+  // The requester pool (docs/robustness.md "Exhaustion"); refused: a request answered 0x02 because no
+  // requester slot was free.
+  base::PoolStats requester_pool() const { return requester_marks_.Stats(active_requesters(), kMaxJournalRequesters); }
 
  private:
   enum class Kind : std::uint8_t { kRead, kWrite };
@@ -133,6 +137,7 @@ class DriveAccessJournal final : public drive_link::AccessListener, public Reque
   std::uint32_t started_ = 0;
   std::uint32_t completions_ = 0;
   std::uint32_t ignored_ = 0;
+  base::PoolWatermark requester_marks_;
 };
 
 }  // namespace cip::drive

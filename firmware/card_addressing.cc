@@ -1,0 +1,318 @@
+#include "card_addressing.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "lwip/ip4_addr.h"
+#include "lwip/pbuf.h"
+
+namespace firmware {
+namespace {
+
+// RFC 2131 §3.1 step 5: after declining an address, wait at least ten seconds before starting again.
+constexpr hal::Micros kDhcpRestartDelay = 10 * hal::kMicrosPerSecond;
+
+// The largest BOOTP/DHCP datagram read (a reply larger than an Ethernet payload cannot arrive unfragmented,
+// and lwIP reassembles nothing: IP_REASSEMBLY 0).
+constexpr std::size_t kMaxBootReply = 1472;
+
+std::uint32_t FromOctets(const std::array<std::uint8_t, 4>& octets) {
+  return static_cast<std::uint32_t>(octets[0]) << 24 | static_cast<std::uint32_t>(octets[1]) << 16 |
+         static_cast<std::uint32_t>(octets[2]) << 8 | octets[3];
+}
+
+ip4_addr_t ToLwip(std::uint32_t host_order) {
+  ip4_addr_t address;
+  ip4_addr_set_u32(&address, lwip_htonl(host_order));
+  return address;
+}
+
+std::uint32_t HostOrder(const ip4_addr_t* address) {
+  return address == nullptr ? 0 : lwip_ntohl(ip4_addr_get_u32(address));
+}
+
+// The manual configuration as the card uses it: no address when c505-c508 is not a usable unicast
+// address; the classful mask when c509-c512 is 0 or not contiguous; no gateway outside the subnet.
+Ipv4Config UsableManual(const Ipv4Config& given) {
+  Ipv4Config config;
+  if (!net::IsUsableUnicast(given.address)) return config;
+  config.address = given.address;
+  config.netmask = net::IsContiguousMask(given.netmask) ? given.netmask : ClassfulMask(given.address);
+  const bool gateway_on_link = (given.gateway & config.netmask) == (config.address & config.netmask);
+  config.gateway = given.gateway != 0 && gateway_on_link ? given.gateway : 0;
+  return config;
+}
+
+}  // namespace
+
+AddressingPlan PlanFromConfig(const drive_link::CardConfig& config) {
+  AddressingPlan plan;
+  plan.mode = config.ip_mode;
+  plan.manual = {FromOctets(config.ip), FromOctets(config.netmask), FromOctets(config.gateway)};
+  plan.host_name = config.device_name;
+  return plan;
+}
+
+std::uint32_t ClassfulMask(std::uint32_t address) {
+  if ((address >> 31) == 0) return 0xFF000000;     // class A
+  if ((address >> 30) == 0b10) return 0xFFFF0000;  // class B
+  return 0xFFFFFF00;                               // class C
+}
+
+const char* AddressPhaseName(AddressPhase phase) {
+  switch (phase) {
+    case AddressPhase::kNotConfigured:
+      return "none";
+    case AddressPhase::kAcquiring:
+      return "acquiring";
+    case AddressPhase::kProbing:
+      return "probing";
+    case AddressPhase::kInUse:
+      return "in-use";
+    case AddressPhase::kConflict:
+      return "conflict";
+  }
+  return "?";
+}
+
+CardAddressing::CardAddressing(CardNetif& netif, const hal::Clock& clock, hal::RandomSource& random)
+    : netif_(netif),
+      clock_(clock),
+      acd_(netif.port().Mac(), net::kEtherNetIpTimings, random, *this),
+      bootp_(netif.port().Mac(), random) {}
+
+CardAddressing::~CardAddressing() {
+  StopAll();
+  if (netif_dhcp_data(&netif_.lwip_netif()) == &dhcp_) dhcp_remove_struct(&netif_.lwip_netif());
+}
+
+base::Status CardAddressing::Configure(const drive_link::CardConfig& config) {
+  const AddressingPlan plan = PlanFromConfig(config);
+  if (configured_ && plan == plan_) return base::OkStatus();
+  plan_ = plan;
+  configured_ = true;
+  ++counters_.restarts;
+  Restart(clock_.NowMicros());
+  return base::OkStatus();
+}
+
+void CardAddressing::StopAll() {
+  if (dhcp_running_) {
+    dhcp_release_and_stop(&netif_.lwip_netif());
+    dhcp_running_ = false;
+  }
+  dhcp_restart_at_ = hal::kNever;
+  bootp_.Stop();
+  if (bootp_pcb_ != nullptr) {
+    udp_remove(bootp_pcb_);
+    bootp_pcb_ = nullptr;
+  }
+  acd_.Stop();
+  target_set_ = false;
+  Uninstall();
+}
+
+void CardAddressing::Restart(hal::Micros now) {
+  StopAll();
+  acd_enabled_ = acd_selected_;
+  acd_ran_ = false;
+  netif& nif = netif_.lwip_netif();
+  // The device name is the DHCP host name (and client identifier); an empty one sends neither.
+  netif_set_hostname(&nif, plan_.host_name[0] != '\0' ? plan_.host_name.data() : nullptr);
+  switch (plan_.mode) {
+    case drive_link::IpMode::kManual: {
+      const Ipv4Config manual = UsableManual(plan_.manual);
+      if (manual.address != 0) UseAddress(manual, now);
+      break;
+    }
+    case drive_link::IpMode::kBootp:
+      StartBootp(now);
+      break;
+    case drive_link::IpMode::kDhcp:
+      dhcp_restart_at_ = now;  // started from Poll, like a restart after a conflict
+      break;
+  }
+}
+
+void CardAddressing::UseAddress(const Ipv4Config& config, hal::Micros now) {
+  target_ = config;
+  target_set_ = true;
+  if (acd_enabled_) {
+    acd_.Start(config.address, now);
+    acd_ran_ = true;
+  }
+  PollManualOrBootp();
+}
+
+void CardAddressing::Install(const Ipv4Config& config) {
+  if (active() == config) return;
+  const ip4_addr_t address = ToLwip(config.address);
+  const ip4_addr_t netmask = ToLwip(config.netmask);
+  const ip4_addr_t gateway = ToLwip(config.gateway);
+  netif_set_addr(&netif_.lwip_netif(), &address, &netmask, &gateway);
+  ++counters_.address_changes;
+}
+
+void CardAddressing::Uninstall() { Install(Ipv4Config{}); }
+
+Ipv4Config CardAddressing::active() const {
+  netif& nif = netif_.lwip_netif();
+  return {HostOrder(netif_ip4_addr(&nif)), HostOrder(netif_ip4_netmask(&nif)), HostOrder(netif_ip4_gw(&nif))};
+}
+
+AddressPhase CardAddressing::phase() const {
+  if (!configured_) return AddressPhase::kNotConfigured;
+  if (has_address()) return AddressPhase::kInUse;
+  if (target_set_ && acd_enabled_) {
+    return acd_.State() == net::AcdState::kConflict ? AddressPhase::kConflict : AddressPhase::kProbing;
+  }
+  if (plan_.mode == drive_link::IpMode::kManual) return AddressPhase::kNotConfigured;
+  return AddressPhase::kAcquiring;
+}
+
+void CardAddressing::Poll(hal::Micros now) {
+  if (!configured_) return;
+  if (plan_.mode == drive_link::IpMode::kDhcp) {
+    PollDhcp(now);
+    return;
+  }
+  if (plan_.mode == drive_link::IpMode::kBootp) PollBootp(now);
+  if (target_set_ && acd_enabled_) acd_.Poll(now);
+  PollManualOrBootp();
+}
+
+hal::Micros CardAddressing::NextDeadline() const {
+  hal::Micros deadline = dhcp_restart_at_;
+  if (target_set_ && acd_enabled_) deadline = std::min(deadline, acd_.NextDeadline());
+  if (bootp_.state() == net::BootpClient::State::kRequesting) deadline = std::min(deadline, bootp_.NextDeadline());
+  return deadline;
+}
+
+// Manual and BOOTP: the address is in lwIP exactly while ACD allows it (or at once without ACD).
+void CardAddressing::PollManualOrBootp() {
+  if (target_set_ && (!acd_enabled_ || acd_.AddressUsable())) {
+    Install(target_);
+  } else {
+    Uninstall();
+  }
+}
+
+void CardAddressing::StartBootp(hal::Micros now) {
+  bootp_.Start(now);
+  PollBootp(now);
+}
+
+void CardAddressing::PollBootp(hal::Micros now) {
+  if (bootp_.state() == net::BootpClient::State::kBound) {
+    if (bootp_pcb_ != nullptr) {  // BOOTP has no lease to renew: the PCB is not needed any more
+      udp_remove(bootp_pcb_);
+      bootp_pcb_ = nullptr;
+    }
+    if (!target_set_) {
+      const net::BootReply& lease = bootp_.Lease();
+      Ipv4Config config{lease.your_address, lease.subnet_mask.value_or(0), lease.router.value_or(0)};
+      UseAddress(UsableManual(config), now);
+    }
+    return;
+  }
+  if (bootp_.state() != net::BootpClient::State::kRequesting) return;
+  if (bootp_pcb_ == nullptr) {
+    // No PCB free: the request waits for the next poll (the retransmission timer keeps running).
+    bootp_pcb_ = udp_new();
+    if (bootp_pcb_ == nullptr) return;
+    ip_set_option(bootp_pcb_, SOF_BROADCAST);
+    if (udp_bind(bootp_pcb_, IP4_ADDR_ANY, net::kBootpClientPort) != ERR_OK) {
+      udp_remove(bootp_pcb_);
+      bootp_pcb_ = nullptr;
+      return;
+    }
+    udp_recv(bootp_pcb_, &CardAddressing::BootpReceived, this);
+  }
+  std::array<std::uint8_t, net::kBootpMessageSize> request;
+  const std::size_t size = bootp_.Poll(now, request);
+  if (size == 0) return;
+  pbuf* p = pbuf_alloc(PBUF_TRANSPORT, static_cast<u16_t>(size), PBUF_RAM);
+  if (p == nullptr) return;  // lost like a frame on the wire: the next retransmission comes anyway
+  pbuf_take(p, request.data(), static_cast<u16_t>(size));
+  // From 0.0.0.0 to the limited broadcast, as lwIP's DHCP client sends before it has an address.
+  if (udp_sendto_if_src(bootp_pcb_, p, IP_ADDR_BROADCAST, net::kBootpServerPort, &netif_.lwip_netif(),
+                        IP4_ADDR_ANY) == ERR_OK) {
+    ++counters_.bootp_requests;
+  }
+  pbuf_free(p);
+}
+
+void CardAddressing::BootpReceived(void* arg, udp_pcb* /*pcb*/, pbuf* p, const ip_addr_t* /*address*/,
+                                   u16_t port) {
+  auto* self = static_cast<CardAddressing*>(arg);
+  std::array<std::uint8_t, kMaxBootReply> reply;
+  const u16_t length = pbuf_copy_partial(p, reply.data(), static_cast<u16_t>(std::min<std::size_t>(p->tot_len, reply.size())), 0);
+  pbuf_free(p);
+  const bool from_server = port == net::kBootpServerPort;
+  if (from_server && self->bootp_.OnReply(std::span<const std::uint8_t>(reply.data(), length)).ok()) {
+    ++self->counters_.bootp_replies;
+  } else {
+    ++self->counters_.bootp_ignored;
+  }
+}
+
+void CardAddressing::PollDhcp(hal::Micros now) {
+  netif& nif = netif_.lwip_netif();
+  if (!dhcp_running_ && now >= dhcp_restart_at_) {
+    if (netif_dhcp_data(&nif) == nullptr) dhcp_set_struct(&nif, &dhcp_);
+    if (dhcp_start(&nif) != ERR_OK) {
+      dhcp_restart_at_ = now + kDhcpRestartDelay;  // no PCB: try again later
+      return;
+    }
+    dhcp_running_ = true;
+    dhcp_restart_at_ = hal::kNever;
+  }
+  if (!dhcp_running_) return;
+  if (dhcp_supplied_address(&nif) != 0) {
+    const Ipv4Config leased = active();
+    if (!target_set_ || target_.address != leased.address) {
+      target_ = leased;
+      target_set_ = true;
+      if (acd_enabled_) {
+        acd_.Claim(leased.address, now);
+        acd_ran_ = true;
+      }
+    }
+  } else if (target_set_) {
+    // The lease ended (not renewed): lwIP removed the address and looks for a new one.
+    target_set_ = false;
+    acd_.Stop();
+  }
+  if (!target_set_ || !acd_enabled_) return;
+  acd_.Poll(now);
+  if (acd_.State() == net::AcdState::kConflict) {
+    // A second conflict in DEFEND_INTERVAL: give the lease back and ask again later.
+    dhcp_release_and_stop(&nif);
+    dhcp_running_ = false;
+    acd_.Stop();
+    target_set_ = false;
+    dhcp_restart_at_ = now + kDhcpRestartDelay;
+    ++counters_.dhcp_restarts;
+  }
+}
+
+void CardAddressing::OnFrameToCard(std::span<const std::uint8_t> frame) {
+  if (!target_set_ || !acd_enabled_) return;
+  const hal::Micros now = clock_.NowMicros();
+  const net::AcdEvent event = acd_.OnFrame(frame, now);
+  if (event == net::AcdEvent::kNone) return;
+  ++counters_.acd_conflicts;
+  // A yielded address leaves lwIP before lwIP reads this very frame (RFC 5227 §2.4: stop using it at
+  // once); otherwise lwIP would still answer the other host's ARP for it.
+  if (event == net::AcdEvent::kYielded) Poll(now);
+}
+
+void CardAddressing::OnPortLinkUp(hal::PortId /*port*/) {
+  if (target_set_ && acd_enabled_) acd_.LinkUp(clock_.NowMicros());
+}
+
+void CardAddressing::SendArp(std::span<const std::uint8_t, net::kArpFrameSize> frame) {
+  if (netif_.SendFrame(frame)) ++counters_.acd_frames_sent;
+}
+
+}  // namespace firmware

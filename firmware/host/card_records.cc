@@ -1,0 +1,15 @@
+#include "card_records.h"
+
+namespace host {
+
+hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
+  hal::MacAddress mac{};
+  const base::Result<std::size_t> read = store.Read(kNvFactoryMac, mac);
+  if (read.ok() && *read == mac.size()) return mac;
+  random.Fill(mac);
+  mac[0] = static_cast<std::uint8_t>((mac[0] & 0xFC) | 0x02);  // unicast, locally administered
+  store.Write(kNvFactoryMac, mac).IgnoreError();
+  return mac;
+}
+
+}  // namespace host
