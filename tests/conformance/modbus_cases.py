@@ -168,7 +168,7 @@ ADDRESSES_MASTER = [
 VALUES = [
     ("FC 06 acc = 0 (range 1-60000)", "06 00 09 00 00", "86 03"),
     ("FC 06 acc = 60001", "06 00 09 EA 61", "86 03"),
-    ("FC 06 cmod = 5 (range 0-4)", "06 00 03 00 05", "86 03"),
+    ("FC 06 fmsl = 19 (range 0-18)", "06 00 05 00 13", "86 03"),
     ("FC 16 acc = 0, dec = 60: stops at acc", "10 00 09 00 02 04 00 00 00 3C", "90 03"),
     ("FC 03 of 0001 (no such register): 0x8000", "03 00 01 00 01", "03 02 80 00"),
     ("FC 03 from 000A: 0x8000, then 0010 (dec) (§8.9 (5))", "03 00 0A 00 02", f"03 04 80 00 {DEC >> 8:02X} {DEC & 0xFF:02X}"),
@@ -186,6 +186,20 @@ ACCESS = [
     ("FC 23 to unit 255 from a non-master", "17 00 01 00 01 00 01 00 01 02 00 00", "97 01", 255),
     ("FC 06 to unit 255 from a non-master", "06 00 01 00 00", "86 01", 255),
     ("bad FC 23 from a non-master: 01 before the data check", "17 00 01 00 00 00 01 00 01 02 00 00", "97 01", 255),
+]
+
+# The master lock (docs/modbus.md "Unit 255", docs/security.md): while c604 = 1 with a master, the control
+# registers (FA00-FAFF, cmod, fmod, f207, f899) refuse writes from other clients with 02, before the value.
+MASTER_LOCK = [
+    ("FC 06 FA23 from a non-master", "06 FA 23 00 00", "86 02"),
+    ("FC 06 FA00 from a non-master", "06 FA 00 00 00", "86 02"),
+    ("FC 06 cmod = 5 from a non-master: 02 before the value", "06 00 03 00 05", "86 02"),
+    ("FC 06 f899 = 1 from a non-master", "06 08 99 00 01", "86 02"),
+    ("FC 16 F9F9-FA00 from a non-master: nothing written", "10 F9 F9 00 02 04 00 00 00 00", "90 02"),
+]
+
+MASTER_LOCK_MASTER = [
+    ("FC 06 cmod = 5 from the master (range 0-4)", "06 00 03 00 05", "86 03"),
 ]
 
 
@@ -356,6 +370,8 @@ def cases():
     out += table("address (02)", ADDRESSES_MASTER, on="master")
     out += table("value (03, 0x8000)", VALUES)
     out += table("IO scanning access (01)", ACCESS)
+    out += table("master lock (02)", MASTER_LOCK)
+    out += table("master lock (02)", MASTER_LOCK_MASTER, on="master")
     out += table("order of checks", ORDER)
     out += framing_cases()
     return out

@@ -224,10 +224,17 @@ def arp_request(source_mac, source_ip, target_ip):
             socket.inet_aton(source_ip) + bytes(6) + socket.inet_aton(target_ip))
 
 
-def flood(card, seconds, iface):
+# What a 100 Mbit/s port can carry at most: 148,809 minimum-size frames a second (64 bytes with the FCS,
+# plus 20 of preamble and gap). Our ARP frames are minimum-size, the ListIdentity ones 70 bytes: the flood
+# is paced at 140,000 frames/s in all, a broadcast storm at line rate (a TAP has no line rate of its own).
+LINE_RATE_FRAMES = 140_000
+
+
+def flood(card, seconds, iface, rate=LINE_RATE_FRAMES):
     """Half the frames are broadcast ListIdentity requests (UDP to the subnet's broadcast address), half ARP
-    requests for the card's address from ever-changing senders of its subnet (each one an ARP reply and an
-    ARP cache entry the card must make room for)."""
+    requests for the card's address from ever-changing senders of its subnet (without the ArpGuard, each one
+    an ARP cache entry the card would make room for). Paced at `rate` frames/s (FLOOD_RATE overrides)."""
+    rate = float(os.environ.get("FLOOD_RATE", rate))
     subnet = card.rsplit(".", 1)[0]
     udp = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
     udp.setsockopt(socket.SOL_SOCKET, socket.SO_BROADCAST, 1)
@@ -243,10 +250,14 @@ def flood(card, seconds, iface):
     if kind == "arp-same":
         frames = frames[:1]
     sent_udp = sent_arp = errors = 0
-    until = time.monotonic() + seconds
+    begin = time.monotonic()
+    until = begin + seconds
     i = 0
     while time.monotonic() < until:
-        for _ in range(64):
+        ahead = (sent_udp + sent_arp + errors) / rate - (time.monotonic() - begin)
+        if ahead > 0:
+            time.sleep(ahead)
+        for _ in range(32):
             try:
                 if kind in ("both", "udp"):
                     udp.sendto(list_identity, (f"{subnet}.255", 44818))

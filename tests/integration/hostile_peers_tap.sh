@@ -14,11 +14,11 @@
 # client and its pools are back where they started (lwIP memp "used" of TCP PCBs and segments).
 #
 # Flood (eip): a class 1 exclusive owner 21/71 at RPI 10 ms (multiplier 1: timeout 80 ms) runs while one
-# process sends broadcast ListIdentity requests and ARP requests for the card (ever-changing senders) as
-# fast as it can for FLOOD_SECONDS (8). Every T->O interval in the flood window must stay below the
-# connection timeout, the card must skip no production slot (cip.missed_productions unchanged), and the
-# T->O sequence counts must step by exactly 1 (nothing lost between the card and us). Max interval, p99
-# and the jitter are printed.
+# process sends broadcast ListIdentity requests and ARP requests for the card (ever-changing senders) at
+# 100 Mbit/s line rate (140,000 frames/s; hostile_peers.py LINE_RATE_FRAMES) for FLOOD_SECONDS (8). Every
+# T->O interval in the flood window must stay below the connection timeout, the T->O sequence counts must
+# step by exactly 1 (nothing lost between the card and us), and the card may skip at most 2 production
+# slots (cip.missed_productions). Max interval, p99, the jitter and the card's CPU time are printed.
 #
 # The card runs with SCHED_FIFO and the healthy clients one step below (as integration.eip_io), the hostile
 # processes at normal priority: the host is shared, and what is measured is the firmware's own scheduling.
@@ -27,7 +27,7 @@ source "$(dirname "$0")/lib.sh"
 MODE=${HOSTILE_MODE:?HOSTILE_MODE must be modbus or eip}
 IT=$(cd "$(dirname "$0")" && pwd)
 export PYTHONPATH="$IT${PYTHONPATH:+:$PYTHONPATH}" PYTHONDONTWRITEBYTECODE=1
-export CARD_IP HOST_IP CARD_CONTROL
+export CARD_IP HOST_IP CARD_CONTROL CARD_PID
 PY=/usr/bin/python3
 HP="$IT/hostile_peers.py"
 N=${HEALTHY_N:-2000}
@@ -105,11 +105,19 @@ CARD = os.environ["CARD_IP"]
 sim = SimControl(os.environ["CARD_CONTROL"])
 RPI, MULTIPLIER = 10000, 1
 TIMEOUT_US = RPI * 4 << MULTIPLIER
+# A slot the card skips was produced a whole RPI late; a shared host may delay one pass now and then (the
+# runs on the build machine skipped none), a starved loop would skip many.
+SKIPPED_SLOTS_TOLERATED = 2
 
 
 def fail(message):
     print(f"FAIL: {message}", file=sys.stderr)
     sys.exit(1)
+
+
+def card_cpu_seconds():
+    fields = open(f"/proc/{os.environ['CARD_PID']}/stat").read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime
 
 
 def stats():
@@ -134,6 +142,7 @@ with IoEndpoint(CARD) as ep:
     if not ep.wait_count(0xF1000001, 50, 3.0):
         fail("no T->O production before the flood")
     before = stats()
+    cpu_before = card_cpu_seconds()
     start = ep.count(0xF1000001)
     flood = subprocess.run([sys.executable, hp, "flood", CARD, str(seconds), "tapL"], capture_output=True, text=True,
                            timeout=seconds + 30, preexec_fn=lambda: os.sched_setscheduler(0, os.SCHED_OTHER,
@@ -141,6 +150,7 @@ with IoEndpoint(CARD) as ep:
     print("   " + (flood.stdout.strip() or flood.stderr.strip()), flush=True)
     received = ep.since(0xF1000001, start)
     after = stats()
+    cpu = card_cpu_seconds() - cpu_before
     ep.stop_sending(io)
     mr, raw, _ = open_connection(client, forward_close(triad, path))
 
@@ -153,13 +163,15 @@ delta = {k: after[k] - before[k] for k in after}
 print(f"   T->O during the flood: {s['n']} intervals, mean {s['mean']:.1f} us, p50 {s['p50']:.1f}, p99 {s['p99']:.1f}, "
       f"max {s['max']:.1f} us (RPI {RPI} us, timeout {TIMEOUT_US} us); jitter p99 {s['p99'] - RPI:+.1f} us, "
       f"max {s['max'] - RPI:+.1f} us; {lost} datagrams missing in the sequence", flush=True)
-print("   card counters during the flood: " + ", ".join(f"{k} +{v}" for k, v in delta.items()), flush=True)
+print("   card counters during the flood: " + ", ".join(f"{k} +{v}" for k, v in delta.items()) +
+      f"; card CPU {cpu:.1f} s in {seconds:.0f} s", flush=True)
 if s["n"] < 0.9 * seconds * 1e6 / RPI:
     fail(f"only {s['n']} T->O intervals in {seconds} s")
 if s["max"] >= TIMEOUT_US:
     fail(f"a T->O gap of {s['max']:.0f} us reached the connection timeout {TIMEOUT_US} us")
-if delta.get("cip.missed_productions", 0) != 0:
-    fail(f"the card skipped {delta['cip.missed_productions']} production slots")
+if delta.get("cip.missed_productions", 0) > SKIPPED_SLOTS_TOLERATED:
+    fail(f"the card skipped {delta['cip.missed_productions']} production slots "
+         f"(tolerated: {SKIPPED_SLOTS_TOLERATED})")
 if delta.get("cip.connection_timeouts", 0) != 0:
     fail("the connection timed out during the flood")
 if lost != 0:

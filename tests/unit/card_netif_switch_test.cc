@@ -8,6 +8,7 @@
 
 #include "card_addressing_harness.h"
 #include "card_netif.h"
+#include "lwip/etharp.h"
 
 namespace firmware::test {
 namespace {
@@ -60,8 +61,14 @@ class CardNetifSwitchTest : public ::testing::Test {
   }
   // Station `mac` (address `ip`) asks for the card on port `from`: the switch learns it there and lwIP
   // answers it (and keeps it in its ARP cache).
+  // The station asks for the card (the switch learns its port); the card asks back and the station
+  // answers (lwIP learns its MAC: the ArpGuard lets no stranger's request into the cache).
   void Introduce(const hal::MacAddress& mac, std::uint32_t ip, PortId from) {
     Pump(ArpFrameBytes(1, kBroadcastMac, mac, mac, ip, kZeroMac, kCardIp), from);
+    ip4_addr_t address;
+    ip4_addr_set_u32(&address, lwip_htonl(ip));
+    ASSERT_EQ(etharp_request(&netif_.lwip_netif(), &address), ERR_OK);
+    Pump(ArpFrameBytes(2, kCardMac, mac, mac, ip, kCardMac, kCardIp), from);
     port_.sent().clear();
   }
 
@@ -99,7 +106,7 @@ TEST_F(CardNetifSwitchTest, UnicastToAStationOnTheSamePort_Filtered) {
   Pump(EchoRequest(kStationB, kStationA, kIpA, kIpB), PortId::kLeft);
   EXPECT_TRUE(port_.sent().empty());
   EXPECT_EQ(netif_.traffic(PortId::kRight).forwarded, flooded);
-  EXPECT_EQ(netif_.counters().rx_frames, 1u);  // only the introduction's ARP request
+  EXPECT_EQ(netif_.counters().rx_frames, 2u);  // only the introduction's ARP request and reply
 }
 
 TEST_F(CardNetifSwitchTest, Broadcast_ToLwipAndTheOtherPort_ReplyOutOfTheLearnedPortOnly) {
