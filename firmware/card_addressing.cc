@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "lwip/ip4_addr.h"
+#include "ipv4_lwip.h"
 #include "lwip/pbuf.h"
 
 namespace firmware {
@@ -15,21 +15,6 @@ constexpr hal::Micros kDhcpRestartDelay = 10 * hal::kMicrosPerSecond;
 // The largest BOOTP/DHCP datagram read (a reply larger than an Ethernet payload cannot arrive unfragmented,
 // and lwIP reassembles nothing: IP_REASSEMBLY 0).
 constexpr std::size_t kMaxBootReply = 1472;
-
-std::uint32_t FromOctets(const std::array<std::uint8_t, 4>& octets) {
-  return static_cast<std::uint32_t>(octets[0]) << 24 | static_cast<std::uint32_t>(octets[1]) << 16 |
-         static_cast<std::uint32_t>(octets[2]) << 8 | octets[3];
-}
-
-ip4_addr_t ToLwip(std::uint32_t host_order) {
-  ip4_addr_t address;
-  ip4_addr_set_u32(&address, lwip_htonl(host_order));
-  return address;
-}
-
-std::uint32_t HostOrder(const ip4_addr_t* address) {
-  return address == nullptr ? 0 : lwip_ntohl(ip4_addr_get_u32(address));
-}
 
 // The manual configuration as the card uses it: no address when c505-c508 is not a usable unicast
 // address; the classful mask when c509-c512 is 0 or not contiguous; no gateway outside the subnet.

@@ -4,6 +4,7 @@
 
 #include "cip/byte_io.h"
 #include "drive_link/drive_registers.h"
+#include "ipv4_lwip.h"
 #include "lwip/netif.h"
 
 namespace firmware {
@@ -14,15 +15,6 @@ namespace reg = drive_link::reg;
 constexpr std::uint8_t kExtrasVersion = 1;
 // version, ttl, select_acd, allocation control, num_mcast, start, name servers, domain length + name
 constexpr std::size_t kExtrasMaxBytes = 1 + 1 + 1 + 1 + 2 + 4 + 4 + 4 + 1 + cip::kMaxDomainName;
-
-std::uint32_t HostOrder(const ip4_addr_t* address) {
-  return address == nullptr ? 0 : lwip_ntohl(ip4_addr_get_u32(address));
-}
-
-std::uint32_t FromOctets(const std::array<std::uint8_t, 4>& octets) {
-  return (std::uint32_t{octets[0]} << 24) | (std::uint32_t{octets[1]} << 16) | (std::uint32_t{octets[2]} << 8) |
-         octets[3];
-}
 
 std::uint8_t Octet(std::uint32_t address, int index) {
   return static_cast<std::uint8_t>(address >> (24 - 8 * index));

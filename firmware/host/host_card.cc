@@ -14,6 +14,7 @@
 #include "card_report.h"
 #include "card_status_publisher.h"
 #include "control_server.h"
+#include "drive_link/drive_registers.h"
 #include "drive_link/register_proxy.h"
 #include "ethernet_ip_card.h"
 #include "event_loop.h"
@@ -63,9 +64,6 @@ std::string FormatMac(const hal::MacAddress& mac) {
 // --ip: the address plan keyed into the inverter before power-up, at every start: c504 = 0 (manual) and
 // c505-c516 (one octet per parameter; communication numbers C505-C509, C510-C516).
 bool ForceManualAddress(const HostOptions& options, SimulatedInverter& inverter, std::string& error) {
-  const auto number = [](unsigned title) {
-    return static_cast<std::uint16_t>(0xC500 | (title / 10 % 10) << 4 | title % 10);
-  };
   std::array<std::uint16_t, 13> values{0};
   for (unsigned i = 0; i < 4; ++i) {
     const unsigned shift = 24 - 8 * i;
@@ -75,7 +73,7 @@ bool ForceManualAddress(const HostOptions& options, SimulatedInverter& inverter,
   }
   for (unsigned i = 0; i < values.size(); ++i) {
     const hal::host::sim::WriteResult result =
-        inverter.model().Write(number(504 + i), values[i], hal::host::sim::WriteTarget::kRamAndEeprom);
+        inverter.model().Write(drive_link::reg::CParameter(504 + i), values[i], hal::host::sim::WriteTarget::kRamAndEeprom);
     if (!result.ok()) {
       error = "--ip: the inverter refused c" + std::to_string(504 + i) + " (" +
               hal::host::sim::WriteOutcomeName(result.outcome) + ")";
