@@ -3,6 +3,7 @@
 #include <array>
 #include <cstring>
 
+#include "ipv4_lwip.h"
 #include "lwip/etharp.h"
 #include "lwip/igmp.h"
 #include "lwip/pbuf.h"
@@ -11,12 +12,6 @@
 
 namespace firmware {
 namespace {
-
-ip4_addr_t ToLwip(std::uint32_t host_order) {
-  ip4_addr_t address;
-  ip4_addr_set_u32(&address, lwip_htonl(host_order));
-  return address;
-}
 
 // Broadcast and multicast destinations have the group bit (bit 0 of the first octet) set.
 bool IsGroupAddress(std::span<const std::uint8_t> frame) { return !frame.empty() && (frame[0] & 0x01) != 0; }
@@ -34,6 +29,10 @@ void CardNetif::Start(const Ipv4Config& config, const char* hostname) {
   netif_add(&netif_, &address, &netmask, &gateway, this, &CardNetif::InitCallback, ethernet_input);
   added_ = true;
   netif_set_hostname(&netif_, hostname);
+  // lwIP calls this on every change of the address (manual, ACD, BOOTP, DHCP, a yield), so the guard
+  // never works with a stale one and nothing is refreshed per frame.
+  netif_set_status_callback(&netif_, &CardNetif::StatusCallback);
+  RefreshArpIdentity();
   netif_set_default(&netif_);
   netif_set_up(&netif_);
   SyncLinkState();
@@ -65,7 +64,6 @@ err_t CardNetif::LinkOutput(pbuf* p) {
   }
   const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
   const std::span<const std::uint8_t> bytes(frame.data(), length);
-  RefreshArpIdentity();
   arp_guard_.NoteSent(bytes, sys_now());
   // A frame no port took is lost like on a cable with no link; TCP retransmits, UDP does not care.
   SendFrame(bytes);
@@ -91,11 +89,13 @@ bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
   return sent;
 }
 
+void CardNetif::StatusCallback(netif* nif) { static_cast<CardNetif*>(nif->state)->RefreshArpIdentity(); }
+
 // The guard follows the address in use (it changes at run time: ACD, BOOTP, DHCP, a new configuration).
 void CardNetif::RefreshArpIdentity() {
   net::MacAddress mac{};
   std::memcpy(mac.data(), netif_.hwaddr, mac.size());
-  arp_guard_.SetIdentity(mac, lwip_ntohl(ip4_addr_get_u32(netif_ip4_addr(&netif_))));
+  arp_guard_.SetIdentity(mac, HostOrder(netif_ip4_addr(&netif_)));
 }
 
 bool CardNetif::Has(std::uint32_t address) const {
@@ -137,8 +137,8 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
     const net::SwitchDelivery delivery = switch_.Ingress(bytes, hal::PortIndex(received->port));
     Forward(bytes, delivery);
     if (!delivery.to_card) continue;
+    // An ACD yield in the observer removes the address before the guard and lwIP see the frame.
     if (observer_ != nullptr) observer_->OnFrameToCard(bytes);
-    RefreshArpIdentity();  // the observer may have given the address up (ACD yield)
     const ArpGuard::Verdict verdict = arp_guard_.Inspect(bytes, *this, sys_now());
     if (verdict == ArpGuard::Verdict::kAnswer) {
       ++counters_.rx_frames;  // taken in, as lwIP would have: only its answer comes from the guard

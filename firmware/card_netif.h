@@ -99,6 +99,7 @@ class CardNetif final : private ArpCacheQuery {
  private:
   static err_t InitCallback(netif* nif);
   static err_t LinkOutputCallback(netif* nif, pbuf* p);
+  static void StatusCallback(netif* nif);
   err_t LinkOutput(pbuf* p);
   void Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery);
   void RefreshArpIdentity();
