@@ -6,8 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include <deque>
 #include <vector>
+
+#include "queued_random.h"
 
 namespace net {
 namespace {
@@ -23,22 +24,7 @@ constexpr MacAddress kOtherMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x99};
 constexpr Ipv4Address kAddress = 0xC000020A;  // 192.0.2.10
 constexpr Ipv4Address kOtherAddress = 0xC0000214;  // 192.0.2.20
 
-// Returns the queued values first, then 0 (every random wait at its minimum).
-class QueuedRandom final : public hal::RandomSource {
- public:
-  void Push(std::uint32_t value) { values_.push_back(value); }
-  void Fill(std::span<std::uint8_t> out) override {
-    std::uint32_t value = 0;
-    if (!values_.empty()) {
-      value = values_.front();
-      values_.pop_front();
-    }
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::uint8_t>(value >> (8 * (i % 4)));
-  }
-
- private:
-  std::deque<std::uint32_t> values_;
-};
+using hal::test::QueuedRandom;
 
 class RecordingSink final : public ArpSink {
  public:

@@ -3,11 +3,12 @@
 // secs field, the checks on a reply, and the bounded option walk with its refusals.
 #include <gtest/gtest.h>
 
-#include <deque>
 #include <vector>
 
 #include "net/bootp_client.h"
 #include "net/dhcp_options.h"
+
+#include "queued_random.h"
 
 namespace net {
 namespace {
@@ -19,21 +20,7 @@ constexpr Micros kS = hal::kMicrosPerSecond;
 constexpr MacAddress kMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};  // RFC 7042 documentation MAC
 constexpr std::uint32_t kXid = 0x12345678;
 
-class QueuedRandom final : public hal::RandomSource {
- public:
-  void Push(std::uint32_t value) { values_.push_back(value); }
-  void Fill(std::span<std::uint8_t> out) override {
-    std::uint32_t value = 0;
-    if (!values_.empty()) {
-      value = values_.front();
-      values_.pop_front();
-    }
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::uint8_t>(value >> (8 * (i % 4)));
-  }
-
- private:
-  std::deque<std::uint32_t> values_;
-};
+using hal::test::QueuedRandom;
 
 // The request the card sends, byte for byte, with the given secs.
 Bytes ExpectedRequest(std::uint16_t secs) {
