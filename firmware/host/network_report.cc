@@ -2,34 +2,11 @@
 
 #include <cstdio>
 
+#include "card_lines.h"
 #include "card_report.h"
 #include "host_options.h"
 
 namespace host {
-namespace {
-
-const char* ModeName(drive_link::IpMode mode) {
-  switch (mode) {
-    case drive_link::IpMode::kManual:
-      return "manual";
-    case drive_link::IpMode::kBootp:
-      return "bootp";
-    case drive_link::IpMode::kDhcp:
-      return "dhcp";
-  }
-  return "?";
-}
-
-int PrefixLength(std::uint32_t mask) {
-  int bits = 0;
-  while (mask & 0x80000000U) {
-    ++bits;
-    mask <<= 1;
-  }
-  return bits;
-}
-
-}  // namespace
 
 void AppendNetworkStats(const NetworkReport& report, std::string& out) {
   const firmware::AddressingCounters& a = report.addressing.counters();
@@ -56,20 +33,9 @@ void AppendNetworkStats(const NetworkReport& report, std::string& out) {
 }
 
 std::string DescribeAddress(const NetworkReport& report) {
-  const firmware::CardAddressing& a = report.addressing;
-  const firmware::Ipv4Config active = a.active();
-  std::string conflict;
-  std::array<std::uint8_t, net::kLastConflictDetectedSize> attribute{};
-  net::EncodeLastConflictDetected(a.last_conflict(), attribute);
-  for (const std::uint8_t byte : attribute) {
-    char hex[3];
-    std::snprintf(hex, sizeof hex, "%02x", byte);
-    conflict += hex;
-  }
-  return std::string("mode=") + ModeName(a.mode()) + " phase=" + firmware::AddressPhaseName(a.phase()) +
-         " ip=" + FormatIpv4(active.address) + "/" + std::to_string(PrefixLength(active.netmask)) +
-         " gw=" + FormatIpv4(active.gateway) + " duplicate=" + (a.duplicate_detected() ? "1" : "0") +
-         " conflict=" + conflict;
+  firmware::TextLine line;
+  firmware::DescribeAddress(report.addressing, line);
+  return std::string(line.view());
 }
 
 std::string DescribeLedInputs(const NetworkReport& report) {

@@ -122,18 +122,18 @@ TEST(NvRecordPowerCut, FactoryMacFirstWrite) {
   NvDirectory dir;
   const std::function<void(hal::NvStore&)> first_start = [](hal::NvStore& store) {
     CountingRandom random;
-    host::LoadOrCreateMac(store, random);
+    firmware::LoadOrCreateMac(store, random);
   };
-  dir.CheckEveryCut(host::kNvFactoryMac, first_start, [](hal::NvStore& store, bool new_expected) {
+  dir.CheckEveryCut(firmware::kNvFactoryMac, first_start, [](hal::NvStore& store, bool new_expected) {
     CountingRandom random;
     random.next_ = 0x90;  // another draw than the interrupted start's
-    const hal::MacAddress mac = host::LoadOrCreateMac(store, random);
+    const hal::MacAddress mac = firmware::LoadOrCreateMac(store, random);
     // Cut before the rename: no MAC was ever kept, so this start makes its own (and keeps it).
     const hal::MacAddress expected = new_expected ? hal::MacAddress{0x42, 0x41, 0x42, 0x43, 0x44, 0x45}
                                                   : hal::MacAddress{0x92, 0x91, 0x92, 0x93, 0x94, 0x95};
     EXPECT_EQ(mac, expected);
     CountingRandom unused;
-    EXPECT_EQ(host::LoadOrCreateMac(store, unused), expected);  // and the next start keeps it
+    EXPECT_EQ(firmware::LoadOrCreateMac(store, unused), expected);  // and the next start keeps it
   });
 }
 
@@ -142,19 +142,19 @@ TEST(NvRecordPowerCut, WebPasswordChange) {
   {
     std::unique_ptr<FileNvStore> store = dir.Open();
     CountingRandom random;
-    web::PasswordStore passwords(*store, host::kNvWebPasswords, random);
+    web::PasswordStore passwords(*store, firmware::kNvWebPasswords, random);
     ASSERT_EQ(passwords.Load().value(), web::PasswordSource::kDefaults);  // writes the defaults' record
   }
   const std::function<void(hal::NvStore&)> change = [](hal::NvStore& store) {
     CountingRandom random;
-    web::PasswordStore passwords(store, host::kNvWebPasswords, random);
+    web::PasswordStore passwords(store, firmware::kNvWebPasswords, random);
     ASSERT_EQ(passwords.Load().value(), web::PasswordSource::kStored);
     passwords.Set(web::PasswordKind::kWrite, "n3w write").IgnoreError();  // fails when the cut comes
   };
   int checked = 0;
-  dir.CheckEveryCut(host::kNvWebPasswords, change, [&checked](hal::NvStore& store, bool new_expected) {
+  dir.CheckEveryCut(firmware::kNvWebPasswords, change, [&checked](hal::NvStore& store, bool new_expected) {
     CountingRandom random;
-    web::PasswordStore passwords(store, host::kNvWebPasswords, random);
+    web::PasswordStore passwords(store, firmware::kNvWebPasswords, random);
     // Stored: the record parsed whole (a damaged one would read as kDefaults and be rewritten).
     ASSERT_EQ(passwords.Load().value(), web::PasswordSource::kStored);
     // Hashing is slow: the passwords themselves are compared at the first cut and after the rename.

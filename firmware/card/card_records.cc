@@ -1,6 +1,6 @@
 #include "card_records.h"
 
-namespace host {
+namespace firmware {
 
 hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) {
   hal::MacAddress mac{};
@@ -12,4 +12,4 @@ hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random) 
   return mac;
 }
 
-}  // namespace host
+}  // namespace firmware

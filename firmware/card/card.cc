@@ -1,0 +1,132 @@
+#include "card.h"
+
+#include "lwip/init.h"
+#include "lwip_port.h"
+
+namespace firmware {
+
+Card::LwipStart::LwipStart(const hal::Clock& clock, hal::RandomSource& random) {
+  BindLwipPlatform(clock, random);
+  lwip_init();
+}
+
+Card::Card(const CardDevices& devices, const CardOptions& options)
+    : clock_(devices.clock),
+      port_(devices.port),
+      store_(devices.store),
+      watchdog_(devices.watchdog),
+      lwip_(devices.clock, devices.random),
+      netif_(devices.port),
+      addressing_(netif_, devices.clock, devices.random),
+      loop_(devices.clock, devices.waiter, netif_),
+      proxy_(devices.drive_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{}),
+      proxy_service_(proxy_),
+      modbus_server_(proxy_, proxy_, proxy_),
+      modbus_service_(modbus_server_, devices.clock, {.port = 502, .keepalive = options.keepalive}),
+      parameter_writer_(proxy_),
+      eip_card_({devices.port, netif_, addressing_, proxy_, parameter_writer_, devices.store, reset_,
+                 devices.random, devices.clock},
+                {.keepalive = options.keepalive, .connections = {}}),
+      leds_(devices.leds),
+      // MS, NS and LNK from one model; the power-up test runs from here.
+      indicators_({devices.port, proxy_, addressing_, &eip_card_.connections()}, leds_,
+                  devices.clock.NowMicros()),
+      // The web server's passwords are the card's own (NV store), not the inverter's.
+      passwords_(devices.store, kNvWebPasswords, devices.random),
+      access_(passwords_, devices.random),
+      // Every configuration read from the inverter goes to the front ends (c500 picks the protocol
+      // whose ports open, c554 the web server's): the Modbus service first, the rest in Start().
+      publisher_(proxy_, modbus_server_, {}, netif_, kFirmwareVersion, &eip_card_.identity_sink()),
+      web_status_({proxy_, publisher_, netif_, leds_, eip_card_.connections()}),
+      web_application_({access_, proxy_, proxy_, proxy_, web_status_}),
+      http_server_(web_application_),
+      web_service_(http_server_, devices.clock, {.port = 80, .keepalive = options.keepalive}) {
+  // The netif starts without an address: the addressing installs one once the configuration is read
+  // from the inverter (c504-c516, c081-c096) and ACD has checked it (docs/network.md "Addressing").
+  netif_.Start(Ipv4Config{}, nullptr);
+  netif_.SetObserver(&addressing_);
+  web_status_.SetWebCounters(http_server_, web_service_);
+}
+
+base::Status Card::Start() {
+  failed_part_ = "EtherNet/IP";
+  if (base::Status started = eip_card_.Start(); !started.ok()) return started;
+  // TCP/IP attribute 10 as stored in the card (a change applies at the next reset).
+  addressing_.SetAcdEnabled(eip_card_.tcpip().StoredSettings().select_acd);
+  // A failing write leaves the default passwords in force; the next change tries the store again.
+  passwords_stored_ = passwords_.Load().ok();
+
+  // Each configuration load reaches the front ends in this order.
+  if (base::Status added = publisher_.AddFrontEnd(modbus_service_); !added.ok()) return added;
+  for (ConfigurableService* front_end : eip_card_.front_ends()) {
+    if (base::Status added = publisher_.AddFrontEnd(*front_end); !added.ok()) return added;
+  }
+  for (ConfigurableService* front_end : {static_cast<ConfigurableService*>(&web_service_),
+                                         static_cast<ConfigurableService*>(&addressing_),
+                                         static_cast<ConfigurableService*>(&indicators_)}) {
+    if (base::Status added = publisher_.AddFrontEnd(*front_end); !added.ok()) return added;
+  }
+  proxy_.SetConfigListener(&publisher_);
+
+  failed_part_ = "drive link";
+  if (base::Status started = proxy_.Start(clock_.NowMicros()); !started.ok()) return started;
+
+  failed_part_ = "event loop";
+  // The loop polls the services in this order on each pass.
+  const auto add = [this](Service& service) { return loop_.AddService(service); };
+  for (Service* service : {static_cast<Service*>(&proxy_service_), static_cast<Service*>(&modbus_service_)}) {
+    if (base::Status added = add(*service); !added.ok()) return added;
+  }
+  for (Service* service : eip_card_.services()) {
+    if (base::Status added = add(*service); !added.ok()) return added;
+  }
+  for (Service* service : {static_cast<Service*>(&parameter_writer_), static_cast<Service*>(&web_application_),
+                           static_cast<Service*>(&web_service_), static_cast<Service*>(&publisher_),
+                           static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_)}) {
+    if (base::Status added = add(*service); !added.ok()) return added;
+  }
+  failed_part_ = "";
+  return base::OkStatus();
+}
+
+std::optional<hal::ResetKind> Card::RunOnce() {
+  if (watchdog_ != nullptr) watchdog_->Feed();
+  if (reset_.pending().has_value()) {
+    // A reset waits, boundedly, for settings still on their way into the inverter's EEPROM (a
+    // Set_Attribute_Single followed by the Identity Reset must not lose the setting).
+    const hal::Micros now = clock_.NowMicros();
+    if (reset_deadline_ == hal::kNever) reset_deadline_ = now + kResetDrainLimit;
+    if (parameter_writer_.pending() == 0 || now >= reset_deadline_) {
+      if (*reset_.pending() == hal::ResetKind::kFactoryDefaults) {
+        // Identity Reset type 1: the card's own settings go back to the out-of-box defaults. The
+        // factory data (MAC) stays; the configuration in the inverter (c-parameters) is the drive's.
+        store_.Erase(kNvTcpIpExtras).IgnoreError();
+      }
+      return reset_.pending();
+    }
+  }
+  loop_.RunOnce();
+  return std::nullopt;
+}
+
+CardReadiness Card::Readiness() const {
+  CardReadiness readiness;
+  readiness.link_up = netif_.link_up();
+  // The drive link has given up (e-23): the card runs without a drive.
+  const bool link_fault = proxy_.link().state() == drive_link::LinkState::kFault;
+  readiness.drive_settled = proxy_.config_loaded() || link_fault;
+  readiness.address_settled =
+      addressing_.phase() != AddressPhase::kProbing && (addressing_.configured() || link_fault);
+  return readiness;
+}
+
+bool Card::TakeAddressChange() {
+  const Ipv4Config now = addressing_.active();
+  if (address_announced_ && now == announced_) return false;
+  if (!address_announced_ && now.address == 0) return false;
+  address_announced_ = true;
+  announced_ = now;
+  return true;
+}
+
+}  // namespace firmware
