@@ -1,5 +1,7 @@
 #include "card_lines.h"
 
+#include <array>
+
 #include "net/acd.h"
 
 namespace firmware {
@@ -27,50 +29,6 @@ unsigned PrefixLength(std::uint32_t mask) {
 }
 
 }  // namespace
-
-TextLine& TextLine::Text(std::string_view text) {
-  for (const char c : text) {
-    if (length_ == text_.size()) {
-      truncated_ = true;
-      break;
-    }
-    text_[length_++] = c;
-  }
-  return *this;
-}
-
-TextLine& TextLine::Unsigned(std::uint64_t value) {
-  char digits[20];
-  std::size_t count = 0;
-  do {
-    digits[count++] = static_cast<char>('0' + value % 10);
-    value /= 10;
-  } while (value != 0);
-  while (count > 0) Text(std::string_view(&digits[--count], 1));
-  return *this;
-}
-
-TextLine& TextLine::Hex(std::uint8_t byte) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  const char pair[2] = {kDigits[byte >> 4], kDigits[byte & 0x0F]};
-  return Text(std::string_view(pair, 2));
-}
-
-TextLine& TextLine::Ipv4(std::uint32_t host_order) {
-  for (int shift = 24; shift >= 0; shift -= 8) {
-    Unsigned((host_order >> shift) & 0xFF);
-    if (shift != 0) Text(".");
-  }
-  return *this;
-}
-
-TextLine& TextLine::Mac(const hal::MacAddress& mac) {
-  for (std::size_t i = 0; i < mac.size(); ++i) {
-    if (i != 0) Text(":");
-    Hex(mac[i]);
-  }
-  return *this;
-}
 
 void DescribeAddress(const CardAddressing& addressing, TextLine& line) {
   const Ipv4Config active = addressing.active();

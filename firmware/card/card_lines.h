@@ -3,35 +3,16 @@
 // so a board prints them without a heap; docs/architecture.md "The ready line" defines the fields.
 #pragma once
 
-#include <array>
-#include <cstddef>
 #include <cstdint>
-#include <string_view>
 
 #include "card.h"
 #include "hal/frame_port.h"
+#include "hal/text_line.h"
 
 namespace firmware {
 
-// A line of at most kCapacity characters; what does not fit is cut off (and marked `truncated`).
-class TextLine {
- public:
-  static constexpr std::size_t kCapacity = 240;
-
-  TextLine& Text(std::string_view text);
-  TextLine& Unsigned(std::uint64_t value);
-  TextLine& Hex(std::uint8_t byte);  // two lowercase digits
-  TextLine& Ipv4(std::uint32_t host_order);
-  TextLine& Mac(const hal::MacAddress& mac);
-
-  std::string_view view() const { return {text_.data(), length_}; }
-  bool truncated() const { return truncated_; }
-
- private:
-  std::array<char, kCapacity> text_{};
-  std::size_t length_ = 0;
-  bool truncated_ = false;
-};
+// The line builder lives in the HAL (hal/text_line.h): a board's LED and console lines use it too.
+using TextLine = hal::TextLine;
 
 // "mode=dhcp phase=in-use ip=A.B.C.D/N gw=G duplicate=0 conflict=<attribute 11 in hex>".
 void DescribeAddress(const CardAddressing& addressing, TextLine& line);

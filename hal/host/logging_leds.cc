@@ -24,20 +24,16 @@ void LoggingLeds::Set(Led led, LedColor color) {
   if (history_.size() == kHistoryCapacity) history_.pop_front();
   history_.push_back(change);
   if (sink_) {
-    sink_(std::string("led ") + LedName(led) + " " + LedColorName(color) +
-          " t=" + std::to_string(change.at));
+    TextLine line;
+    DescribeLedChange(led, color, change.at, line);
+    sink_(line.view());
   }
 }
 
 std::string LoggingLeds::Describe() const {
-  std::string text;
-  for (std::size_t i = 0; i < kLedCount; ++i) {
-    if (i != 0) text += ' ';
-    text += LedName(static_cast<Led>(i));
-    text += '=';
-    text += LedColorName(current_[i]);
-  }
-  return text;
+  TextLine line;
+  DescribeLeds(current_, line);
+  return std::string(line.view());
 }
 
 }  // namespace hal::host

@@ -22,4 +22,15 @@ const char* LedColorName(LedColor color) {
   return "?";
 }
 
+void DescribeLedChange(Led led, LedColor color, Micros at, TextLine& line) {
+  line.Text("led ").Text(LedName(led)).Text(" ").Text(LedColorName(color)).Text(" t=").Unsigned(at);
+}
+
+void DescribeLeds(const std::array<LedColor, kLedCount>& colors, TextLine& line) {
+  for (std::size_t i = 0; i < kLedCount; ++i) {
+    if (i != 0) line.Text(" ");
+    line.Text(LedName(static_cast<Led>(i))).Text("=").Text(LedColorName(colors[i]));
+  }
+}
+
 }  // namespace hal

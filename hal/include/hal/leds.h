@@ -3,8 +3,12 @@
 // state model calling Set() at the right instants, so the HAL stays trivial and the timing testable.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+
+#include "hal/clock.h"
+#include "hal/text_line.h"
 
 namespace hal {
 
@@ -16,6 +20,12 @@ enum class LedColor : std::uint8_t { kOff = 0, kGreen, kRed, kYellow };
 constexpr std::size_t LedIndex(Led led) { return static_cast<std::size_t>(led); }
 const char* LedName(Led led);
 const char* LedColorName(LedColor color);
+
+// The text every backend gives an LED change (host: its log; a board: its console), so that a test or a
+// person reads the same line from both: "led MS green t=123456" (t: µs on the card's clock).
+void DescribeLedChange(Led led, LedColor color, Micros at, TextLine& line);
+// Every LED on one line: "LNK-L=green LNK-R=off MS=green NS=off".
+void DescribeLeds(const std::array<LedColor, kLedCount>& colors, TextLine& line);
 
 class Leds {
  public:
