@@ -5,8 +5,8 @@
 
 namespace firmware {
 
-Card::LwipStart::LwipStart(const hal::Clock& clock, hal::RandomSource& random) {
-  BindLwipPlatform(clock, random);
+Card::LwipStart::LwipStart(const CardDevices& devices) {
+  BindLwipPlatform(devices.clock, devices.random, devices.diagnostics, devices.fatal);
   lwip_init();
 }
 
@@ -15,7 +15,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       port_(devices.port),
       store_(devices.store),
       watchdog_(devices.watchdog),
-      lwip_(devices.clock, devices.random),
+      lwip_(devices),
       netif_(devices.port),
       addressing_(netif_, devices.clock, devices.random),
       loop_(devices.clock, devices.waiter, netif_),

@@ -1,7 +1,7 @@
 // The card: the one device composition. It owns every device object of the firmware (the netif and
 // its switch, the addressing, the drive link and its register proxy, the Modbus TCP and EtherNet/IP
 // front ends, the web server, the indicators, the event loop) and wires them once, from the HAL
-// devices a main hands it. The host main (firmware/host) and the board main (hal/mps2_an386) each
+// devices a main hands it. The host main (firmware/host) and the board main (firmware/board) each
 // build their HAL backends and a Card; neither repeats any wiring.
 //
 // Life cycle:
@@ -29,6 +29,7 @@
 #include "ethernet_ip_card.h"
 #include "event_loop.h"
 #include "hal/clock.h"
+#include "hal/console.h"
 #include "hal/frame_port.h"
 #include "hal/leds.h"
 #include "hal/nv_store.h"
@@ -68,6 +69,8 @@ struct CardDevices {
   hal::NvStore& store;            // the card's own records (card_records.h)
   hal::Leds& leds;
   hal::RandomSource& random;
+  hal::ConsoleOutput& diagnostics;  // lwIP's diagnostics (host: stderr; board: the console UART)
+  hal::FatalHandler& fatal;         // a failed lwIP assertion (host: abort; board: console line, reset)
   hal::Watchdog* watchdog = nullptr;  // fed once per pass of the loop; null: none
 };
 
@@ -131,7 +134,7 @@ class Card {
  private:
   // Binds lwIP's platform functions and runs lwip_init() before any member that uses lwIP is built.
   struct LwipStart {
-    LwipStart(const hal::Clock& clock, hal::RandomSource& random);
+    explicit LwipStart(const CardDevices& devices);
   };
   class ResetLatch final : public hal::ResetControl {
    public:

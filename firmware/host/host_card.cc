@@ -24,6 +24,7 @@
 #include "sim_inverter.h"
 #include "slirp_frame_port.h"
 #include "socket_serial_port.h"
+#include "stderr_console.h"
 #include "tap_frame_port.h"
 
 namespace host {
@@ -155,10 +156,20 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   }
 
   hal::host::LoggingLeds logged_leds(clock, hal::host::LoggingLeds::FileSink(stderr));
+  hal::host::StderrConsole console;
 
   // The card itself: the same composition a board builds (firmware/card/card.h).
   auto card = std::make_unique<firmware::Card>(
-      firmware::CardDevices{clock, waiter, *port, *card_serial, *store.value(), logged_leds, random, nullptr},
+      firmware::CardDevices{.clock = clock,
+                            .waiter = waiter,
+                            .port = *port,
+                            .drive_serial = *card_serial,
+                            .store = *store.value(),
+                            .leds = logged_leds,
+                            .random = random,
+                            .diagnostics = console,
+                            .fatal = console,
+                            .watchdog = nullptr},
       firmware::CardOptions{.keepalive = options.tcp_keepalive});
   card->AddService(*inverter).IgnoreError();  // stores the inverter's EEPROM image when due
   if (base::Status started = card->Start(); !started.ok()) {

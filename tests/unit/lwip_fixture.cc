@@ -2,6 +2,7 @@
 
 #include "lwip/init.h"
 #include "lwip_port.h"
+#include "stderr_console.h"
 
 namespace hal::test {
 
@@ -14,7 +15,8 @@ void EnsureLwipInitialised() {
   static bool done = false;
   if (done) return;
   static CountingRandom random;
-  firmware::BindLwipPlatform(LwipTestClock(), random);
+  static hal::host::StderrConsole console;
+  firmware::BindLwipPlatform(LwipTestClock(), random, console, console);
   lwip_init();
   done = true;
 }
