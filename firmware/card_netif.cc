@@ -49,7 +49,24 @@ err_t CardNetif::InitCallback(netif* nif) {
   nif->flags = NETIF_FLAG_BROADCAST | NETIF_FLAG_ETHARP | NETIF_FLAG_ETHERNET | NETIF_FLAG_IGMP;
   nif->output = etharp_output;
   nif->linkoutput = &CardNetif::LinkOutputCallback;
+  // Set here, in the init callback, because netif_add() starts IGMP (and joins 224.0.0.1) right after it.
+  netif_set_igmp_mac_filter(nif, &CardNetif::MacFilterCallback);
   return ERR_OK;
+}
+
+err_t CardNetif::MacFilterCallback(netif* nif, const ip4_addr_t* group, enum netif_mac_filter_action action) {
+  auto* self = static_cast<CardNetif*>(nif->state);
+  // RFC 1112 §6.4: 01-00-5E-00-00-00 plus the low-order 23 bits of the group address.
+  const std::uint32_t address = HostOrder(group);
+  const hal::MacAddress mac{0x01,
+                            0x00,
+                            0x5E,
+                            static_cast<std::uint8_t>((address >> 16) & 0x7F),
+                            static_cast<std::uint8_t>(address >> 8),
+                            static_cast<std::uint8_t>(address)};
+  const base::Status status = action == NETIF_ADD_MAC_FILTER ? self->port_.JoinMulticast(mac)
+                                                             : self->port_.LeaveMulticast(mac);
+  return status.ok() ? ERR_OK : ERR_IF;
 }
 
 err_t CardNetif::LinkOutputCallback(netif* nif, pbuf* p) {

@@ -11,6 +11,10 @@
 // ARP frame, also those the guard drops) and before lwIP: the guard keeps strangers out of lwIP's ARP
 // cache (it answers their requests itself and drops replies nobody asked for).
 //
+// Multicast: lwIP's IGMP tells the netif which groups it joins and leaves (netif->igmp_mac_filter,
+// 224.0.0.1 from the start); the netif passes each group's MAC (01:00:5e + the low 23 bits of the group
+// address) to the frame port, whose MAC filter then lets the group's frames in.
+//
 // Buffer ownership: a received frame is copied into a PBUF_POOL chain; if lwIP's input function does
 // not take it (returns != ERR_OK) the pbuf is freed here. Outgoing pbufs belong to lwIP: linkoutput
 // only copies them into the port.
@@ -100,6 +104,7 @@ class CardNetif final : private ArpCacheQuery {
   static err_t InitCallback(netif* nif);
   static err_t LinkOutputCallback(netif* nif, pbuf* p);
   static void StatusCallback(netif* nif);
+  static err_t MacFilterCallback(netif* nif, const ip4_addr_t* group, enum netif_mac_filter_action action);
   err_t LinkOutput(pbuf* p);
   void Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery);
   void RefreshArpIdentity();

@@ -28,6 +28,8 @@ class CapturingFramePort final : public FramePort {
   PortCounters Counters(PortId port) const override { return inner_.Counters(port); }
   base::Result<ReceivedFrame> Receive(std::span<std::uint8_t> buffer) override;
   base::Status Transmit(PortId port, std::span<const std::uint8_t> frame) override;
+  base::Status JoinMulticast(const MacAddress& group) override { return inner_.JoinMulticast(group); }
+  base::Status LeaveMulticast(const MacAddress& group) override { return inner_.LeaveMulticast(group); }
 
   // Records that could not be written to the capture file.
   std::size_t capture_errors() const { return capture_errors_; }

@@ -1,6 +1,7 @@
 // A hal::FramePort held entirely in memory: tests push frames in and read what the card sent.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <vector>
@@ -40,6 +41,19 @@ class FakeFramePort final : public FramePort {
     return base::OkStatus();
   }
 
+  base::Status JoinMulticast(const MacAddress& group) override {
+    joined_.push_back(group);
+    return base::OkStatus();
+  }
+  base::Status LeaveMulticast(const MacAddress& group) override {
+    const auto found = std::find(joined_.begin(), joined_.end(), group);
+    if (found == joined_.end()) return base::NotFound();
+    joined_.erase(found);
+    return base::OkStatus();
+  }
+  // The multicast groups joined and not left, in the order joined (a group joined twice is there twice).
+  const std::vector<MacAddress>& joined() const { return joined_; }
+
   void Inject(std::vector<std::uint8_t> frame, PortId port = PortId::kLeft) {
     inbox_.push_back(Sent{port, std::move(frame)});
   }
@@ -54,6 +68,7 @@ class FakeFramePort final : public FramePort {
   LinkState links_[kMaxPorts];
   std::deque<Sent> inbox_;
   std::vector<Sent> sent_;
+  std::vector<MacAddress> joined_;
 };
 
 }  // namespace hal::test

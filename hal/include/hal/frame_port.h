@@ -11,6 +11,12 @@
 //   is full (frame dropped, as a MAC with a full ring would). kNotFound: no such port.
 // - Link() is cheap and may be called every loop pass; the event loop compares it with what lwIP knows.
 // - Counters are cumulative since start and feed the Ethernet Link object (0xF6) and the web page.
+// - Multicast: broadcast always passes. A port whose MAC filters multicast (a board's hash filter)
+//   delivers a multicast group's frames from JoinMulticast() until LeaveMulticast(); joins of one group
+//   nest (it stays until as many leaves). A port that cannot filter finely enough passes more than was
+//   asked, never less (a full filter table: every multicast frame). A port that passes every multicast
+//   frame anyway (the host backends) keeps the default, which accepts both calls and changes nothing.
+//   LeaveMulticast() of a group that was not joined: kNotFound.
 #pragma once
 
 #include <array>
@@ -69,6 +75,13 @@ class FramePort {
 
   virtual base::Result<ReceivedFrame> Receive(std::span<std::uint8_t> buffer) = 0;
   virtual base::Status Transmit(PortId port, std::span<const std::uint8_t> frame) = 0;
+
+  // The multicast groups to receive (lwIP's IGMP joins them through the netif's MAC filter hook). The
+  // default is a port that receives every multicast frame: there is nothing to program. (Inline, so
+  // the interface keeps no key function: its vtable and type information come with each user, built
+  // with or without RTTI.)
+  virtual base::Status JoinMulticast(const MacAddress&) { return base::OkStatus(); }
+  virtual base::Status LeaveMulticast(const MacAddress&) { return base::OkStatus(); }
 };
 
 }  // namespace hal
