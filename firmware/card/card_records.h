@@ -12,6 +12,9 @@ namespace firmware {
 // The MAC is factory data: a production line writes it once. A card without one (the host card's
 // first start, a board fresh from the debugger) makes up a locally administered one and keeps it.
 inline constexpr hal::NvRecordId kNvFactoryMac = 0x0001;
+// A board without a true random number generator keeps the seed of its random generator here, renewed
+// at every start (docs/board.md "Random numbers").
+inline constexpr hal::NvRecordId kNvRandomSeed = 0x0002;
 // The web server's read and write passwords, as salted hashes (docs/web.md "Passwords and sessions").
 inline constexpr hal::NvRecordId kNvWebPasswords = 0x0020;
 
