@@ -14,18 +14,15 @@
 #include <vector>
 
 #include "card_records.h"
-#include "cip_providers.h"
+#include "card_records_harness.h"
 #include "fake_flash.h"
-#include "fake_frame_port.h"
 #include "hal/flash_nv_store.h"
-#include "lwip_fixture.h"
-#include "parameter_writer.h"
-#include "register_proxy_fixture.h"
 #include "web/password_store.h"
 
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
+using firmware::test::CountingRandom;
 using hal::FlashNvStore;
 using hal::test::CutMix;
 using hal::test::FakeFlash;
@@ -35,15 +32,6 @@ using hal::test::FakeFlash;
 constexpr std::size_t kSectorBytes = 4096;
 constexpr std::size_t kSectors = 2;
 constexpr std::size_t kProgramUnit = 8;
-
-// Fills with a counter, so every draw differs and a test can say what the next one is.
-class CountingRandom final : public hal::RandomSource {
- public:
-  void Fill(std::span<std::uint8_t> out) override {
-    for (std::uint8_t& byte : out) byte = next_++;
-  }
-  std::uint8_t next_ = 0x40;
-};
 
 class CardFlash {
  public:
@@ -138,21 +126,9 @@ TEST(FlashNvRecords, TheCardsRecordsTakeAFifthOfASector) {
 
 TEST(FlashNvRecords, FactoryMacFirstWrite) {
   CardFlash card;
-  const std::function<void(hal::NvStore&)> first_start = [](hal::NvStore& store) {
-    CountingRandom random;
-    firmware::LoadOrCreateMac(store, random);
-  };
-  const std::uint64_t cuts = card.CheckEveryCut(firmware::kNvFactoryMac, first_start, [](hal::NvStore& store, bool new_expected) {
-    CountingRandom random;
-    random.next_ = 0x90;  // another draw than the interrupted start's
-    const hal::MacAddress mac = firmware::LoadOrCreateMac(store, random);
-    // A cut before the commit: no MAC was ever kept, so this start makes its own (and keeps it).
-    const hal::MacAddress expected = new_expected ? hal::MacAddress{0x42, 0x41, 0x42, 0x43, 0x44, 0x45}
-                                                  : hal::MacAddress{0x92, 0x91, 0x92, 0x93, 0x94, 0x95};
-    EXPECT_EQ(mac, expected);
-    CountingRandom unused;
-    EXPECT_EQ(firmware::LoadOrCreateMac(store, unused), expected);  // and the next start keeps it
-  });
+  // Cut before the commit: no MAC was ever kept, so the next start makes its own (and keeps it).
+  const std::uint64_t cuts = card.CheckEveryCut(firmware::kNvFactoryMac, firmware::test::MacFirstStart,
+                                                firmware::test::ExpectMacAfterRestart);
   // Formatting: an erase, the sector header and commit, the record.
   EXPECT_EQ(cuts, 1 + 16 + 8 + FlashNvStore::RecordFootprint(6, kProgramUnit));
 }
@@ -200,27 +176,11 @@ TEST(FlashNvRecords, WebPasswordChanges) {
   EXPECT_EQ(appended, FlashNvStore::RecordFootprint(web::kPasswordNvBytes, kProgramUnit));
 }
 
-// The TCP/IP extras belong to CardTcpIp, which needs a loaded configuration from the inverter.
-class FlashTcpIpExtrasPowerCut : public drive_link::test::RegisterProxyFixture {
- protected:
-  FlashTcpIpExtrasPowerCut() { hal::test::EnsureLwipInitialised(); }
-
-  cip::TcpIpSettings Restarted(hal::NvStore& store) {
-    firmware::CardTcpIp tcpip(netif_, addressing_, *writer_, store);
-    EXPECT_TRUE(tcpip.Configure(proxy_->config()).ok());
-    return tcpip.StoredSettings();
-  }
-
-  hal::test::FakeFramePort port_{hal::MacAddress{0x02, 0, 0, 0, 0, 1}, 2};
-  firmware::CardNetif netif_{port_};
-  CountingRandom random_;
-  firmware::CardAddressing addressing_{netif_, clock_, random_};
-  std::unique_ptr<firmware::ParameterWriter> writer_;
-};
+using FlashTcpIpExtrasPowerCut = firmware::test::TcpIpExtrasFixture;
 
 TEST_F(FlashTcpIpExtrasPowerCut, TtlMulticastAndDomainChange) {
   StartLoaded();
-  writer_ = std::make_unique<firmware::ParameterWriter>(*proxy_);
+  MakeWriter();
   CardFlash card;
   cip::TcpIpSettings old_settings;
   card.Session([&](hal::NvStore& store) {
