@@ -49,9 +49,10 @@
 //   the next call reads the flash again, so that the store always reads what a restart would.
 //
 // Device-path code: no heap; RAM is this object (about 50 bytes) and about 0.6 KiB of stack in the
-// deepest path (a compaction copying a record and reading it back; 64-byte chunks, no sector buffer). Reads walk the active sector (no
-// index in RAM), so Read and Write cost a scan of the used part of one sector, and a compaction
-// O(records^2) header reads; the card changes its records only on configuration changes.
+// deepest path (a compaction copying a record and reading it back; 64-byte chunks, no sector buffer).
+// Reads walk the active sector (no index in RAM), so Read and Write cost a scan of the used part of
+// one sector, and a compaction O(records^2) header reads; the card changes its records only on
+// configuration changes.
 #pragma once
 
 #include <cstddef>
