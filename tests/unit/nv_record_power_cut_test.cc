@@ -17,28 +17,16 @@
 #include <vector>
 
 #include "card_records.h"
-#include "cip_providers.h"
-#include "fake_frame_port.h"
+#include "card_records_harness.h"
 #include "file_nv_store.h"
-#include "lwip_fixture.h"
-#include "parameter_writer.h"
-#include "register_proxy_fixture.h"
 #include "web/password_store.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using Bytes = std::vector<std::uint8_t>;
+using firmware::test::CountingRandom;
 using hal::host::FileNvStore;
-
-// Fills with a counter, so every draw differs and a test can say what the next one is.
-class CountingRandom final : public hal::RandomSource {
- public:
-  void Fill(std::span<std::uint8_t> out) override {
-    for (std::uint8_t& byte : out) byte = next_++;
-  }
-  std::uint8_t next_ = 0x40;
-};
 
 class NvDirectory {
  public:
@@ -120,21 +108,8 @@ class NvDirectory {
 
 TEST(NvRecordPowerCut, FactoryMacFirstWrite) {
   NvDirectory dir;
-  const std::function<void(hal::NvStore&)> first_start = [](hal::NvStore& store) {
-    CountingRandom random;
-    firmware::LoadOrCreateMac(store, random);
-  };
-  dir.CheckEveryCut(firmware::kNvFactoryMac, first_start, [](hal::NvStore& store, bool new_expected) {
-    CountingRandom random;
-    random.next_ = 0x90;  // another draw than the interrupted start's
-    const hal::MacAddress mac = firmware::LoadOrCreateMac(store, random);
-    // Cut before the rename: no MAC was ever kept, so this start makes its own (and keeps it).
-    const hal::MacAddress expected = new_expected ? hal::MacAddress{0x42, 0x41, 0x42, 0x43, 0x44, 0x45}
-                                                  : hal::MacAddress{0x92, 0x91, 0x92, 0x93, 0x94, 0x95};
-    EXPECT_EQ(mac, expected);
-    CountingRandom unused;
-    EXPECT_EQ(firmware::LoadOrCreateMac(store, unused), expected);  // and the next start keeps it
-  });
+  // Cut before the rename: no MAC was ever kept, so the next start makes its own (and keeps it).
+  dir.CheckEveryCut(firmware::kNvFactoryMac, firmware::test::MacFirstStart, firmware::test::ExpectMacAfterRestart);
 }
 
 TEST(NvRecordPowerCut, WebPasswordChange) {
@@ -165,27 +140,11 @@ TEST(NvRecordPowerCut, WebPasswordChange) {
   });
 }
 
-// The TCP/IP extras belong to CardTcpIp, which needs a loaded configuration from the inverter.
-class TcpIpExtrasPowerCut : public drive_link::test::RegisterProxyFixture {
- protected:
-  TcpIpExtrasPowerCut() { hal::test::EnsureLwipInitialised(); }
-
-  cip::TcpIpSettings Restarted(hal::NvStore& store) {
-    firmware::CardTcpIp tcpip(netif_, addressing_, *writer_, store);
-    EXPECT_TRUE(tcpip.Configure(proxy_->config()).ok());
-    return tcpip.StoredSettings();
-  }
-
-  hal::test::FakeFramePort port_{hal::MacAddress{0x02, 0, 0, 0, 0, 1}, 2};
-  firmware::CardNetif netif_{port_};
-  CountingRandom random_;
-  firmware::CardAddressing addressing_{netif_, clock_, random_};
-  std::unique_ptr<firmware::ParameterWriter> writer_;
-};
+using TcpIpExtrasPowerCut = firmware::test::TcpIpExtrasFixture;
 
 TEST_F(TcpIpExtrasPowerCut, TtlMulticastAndDomainChange) {
   StartLoaded();
-  writer_ = std::make_unique<firmware::ParameterWriter>(*proxy_);
+  MakeWriter();
   NvDirectory dir;
   cip::TcpIpSettings old_settings;
   {

@@ -22,10 +22,23 @@ constexpr std::array<std::uint32_t, 256> MakeTable() {
 inline constexpr std::array<std::uint32_t, 256> kTable = MakeTable();
 }  // namespace crc32_detail
 
+// The CRC of data that arrives in pieces (read from flash a chunk at a time): Add each piece in order;
+// value() is then Crc32 of their concatenation.
+class Crc32Builder {
+ public:
+  constexpr void Add(std::span<const std::uint8_t> bytes) {
+    for (std::uint8_t byte : bytes) crc_ = (crc_ >> 8) ^ crc32_detail::kTable[(crc_ ^ byte) & 0xFFU];
+  }
+  constexpr std::uint32_t value() const { return crc_ ^ 0xFFFFFFFFU; }
+
+ private:
+  std::uint32_t crc_ = 0xFFFFFFFFU;
+};
+
 constexpr std::uint32_t Crc32(std::span<const std::uint8_t> bytes) {
-  std::uint32_t crc = 0xFFFFFFFFU;
-  for (std::uint8_t byte : bytes) crc = (crc >> 8) ^ crc32_detail::kTable[(crc ^ byte) & 0xFFU];
-  return crc ^ 0xFFFFFFFFU;
+  Crc32Builder crc;
+  crc.Add(bytes);
+  return crc.value();
 }
 
 }  // namespace base
