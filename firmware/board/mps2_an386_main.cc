@@ -20,6 +20,7 @@
 #include "cortex_m.h"
 #include "drive_link/link_client.h"
 #include "fpgaio_leds.h"
+#include "hal/flash_nv_store.h"
 #include "hal/text_line.h"
 #include "lan9118_frame_port.h"
 #include "mps2_an386.h"
@@ -71,6 +72,33 @@ void OpenFlash(hal::mps2::SemihostingFlash& flash, hal::ConsoleOutput& console) 
   Say(console, line);
 }
 
+// The card's records: on the flash when there is one (hal::FlashNvStore), else in RAM for this run
+// only (QEMU without semihosting or without flash=PATH), which the console line says.
+hal::NvStore& MountStore(hal::mps2::SemihostingFlash& flash, hal::FlashNvStore& flash_store,
+                         firmware::board::RamNvStore& ram_store, hal::ConsoleOutput& console) {
+  hal::TextLine line;
+  if (!flash.open()) {
+    line.Text("nv: no flash: the card's records are kept in RAM until the next reset");
+    Say(console, line);
+    return ram_store;
+  }
+  if (const base::Status mounted = flash_store.Mount(); !mounted.ok()) {
+    line.Text("nv: the flash store does not mount (").Text(base::StatusName(mounted));
+    line.Text("): the card's records are kept in RAM until the next reset");
+    Say(console, line);
+    return ram_store;
+  }
+  const hal::FlashNvStore::Usage usage = flash_store.usage();
+  line.Text("nv: flash store mounted, ");
+  if (usage.has_active) {
+    line.Text("generation=").Unsigned(usage.generation).Text(" active_sector=").Unsigned(usage.active_sector);
+  } else {
+    line.Text("empty");
+  }
+  Say(console, line);
+  return flash_store;
+}
+
 void SayReady(firmware::Card& card, hal::ConsoleOutput& console) {
   hal::TextLine line;
   line.Text("ready ");
@@ -108,8 +136,9 @@ int main() {
 
   static hal::mps2::SemihostingFlash flash;
   OpenFlash(flash, console);
-  // TODO(FlashNvStore): hal::FlashNvStore store(flash); store.Mount(); in place of the RAM stand-in.
-  static firmware::board::RamNvStore store;
+  static hal::FlashNvStore flash_store(flash);
+  static firmware::board::RamNvStore ram_store;
+  hal::NvStore& store = MountStore(flash, flash_store, ram_store, console);
 
   static hal::mps2::BoardRandom random;
   const hal::mps2::RandomSeeding seeding = random.Seed(store, firmware::kNvRandomSeed, clock);

@@ -1,8 +1,7 @@
-// A stand-in hal::NvStore in RAM, so the board boots before the flash-backed store exists.
-//
-// TODO(FlashNvStore): replace with hal::FlashNvStore (hal/include/hal/flash_nv_store.h) on the
-// SemihostingFlash the board main already opens; nothing here survives a reset, so until then the card
-// makes a new MAC and a new random seed at every start and forgets its settings.
+// hal::NvStore in RAM, for a run of the board without flash (QEMU without semihosting or without
+// flash=PATH; a flash store that does not mount): the card works, but nothing survives a reset, so it
+// makes a new MAC and a new random seed at every start and forgets its settings. The board main says
+// so on the console. With flash, the records are in hal::FlashNvStore.
 //
 // Contract as hal/nv_store.h, with one limit of its own: at most kRecords records of at most
 // kRecordBytes bytes (kResourceExhausted beyond). A write is atomic (RAM: nothing can cut it).
