@@ -6,7 +6,8 @@ Checks, on the console (UART0, a UNIX socket chardev): the start lines; the driv
 and the ready line comes with drive=fault and no address; `stats` reports the painted stack
 (stack.size, stack.high_water within it) and the loop; `leds` in the host's format; an unknown command
 and an overlong line get their errors; `watchdog-test` stops the loop, the watchdog warns after its first timeout and resets
-the card after the second, and the card starts again. Every wait is bounded.
+the card after the second, and the card starts again with the records of its first start (its MAC, the
+stored random seed) read back from the flash store on the semihosting file. Every wait is bounded.
 
 usage: qemu_boot.py QEMU IMAGE
 """
@@ -89,8 +90,10 @@ def main():
             console = Console(sock)
             console.wait_for(r"^ipe002z-board: mps2-an386 \(Cortex-M4F\), starting$", 20)
             console.wait_for(r"^flash: file=\S+/flash\.bin sectors=8x4096 unit=8$", 10)
+            console.wait_for(r"^nv: flash store mounted, empty$", 10)
             console.wait_for(r"^random: chacha20 seed=new renewed=yes jitter_samples=256 ", 10)
-            console.wait_for(r"^ethernet: LAN9118 id_rev=0x01180001 mac=([0-9a-f]{2}:){5}[0-9a-f]{2}$", 10)
+            mac = console.wait_for(r"^ethernet: LAN9118 id_rev=0x01180001 mac=((?:[0-9a-f]{2}:){5}[0-9a-f]{2})$",
+                                   10).group(1)
             console.wait_for(r"^led MS red t=\d+$", 10)
             console.wait_for(r"^ready ip=0\.0\.0\.0 mac=([0-9a-f]{2}:){5}[0-9a-f]{2} net=board "
                              r"modbus=0\.0\.0\.0:502 enip=0\.0\.0\.0:44818 enip-udp=0\.0\.0\.0:44818 "
@@ -124,9 +127,13 @@ def main():
             console.wait_for(r"^watchdog: the loop has not fed the watchdog for 1000 ms; reset in 1000 ms", 5)
             console.wait_for(r"^ipe002z-board: mps2-an386 \(Cortex-M4F\), starting$", 5)
             elapsed = time.time() - started
-            console.wait_for(r"^ready ip=0\.0\.0\.0 ", 30)
+            # The records written at the first start are on the flash file: the same MAC, the stored seed.
+            console.wait_for(r"^nv: flash store mounted, generation=\d+ active_sector=\d+$", 10)
+            console.wait_for(r"^random: chacha20 seed=stored renewed=yes ", 10)
+            console.wait_for(r"^ethernet: LAN9118 id_rev=0x01180001 mac=%s$" % re.escape(mac), 10)
+            console.wait_for(r"^ready ip=0\.0\.0\.0 mac=%s " % re.escape(mac), 30)
             print("ok: booted, ready without a drive, stats (stack %d of %d bytes), leds, watchdog reset after "
-                  "%.1f s, booted again" % (high, size, elapsed))
+                  "%.1f s, booted again with its MAC %s from the flash store" % (high, size, elapsed, mac))
         finally:
             process.kill()
             process.wait(timeout=10)
