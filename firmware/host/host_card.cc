@@ -40,11 +40,11 @@ bool ForceManualAddress(const HostOptions& options, SimulatedInverter& inverter,
     values[9 + i] = static_cast<std::uint16_t>((options.gateway >> shift) & 0xFF);
   }
   for (unsigned i = 0; i < values.size(); ++i) {
-    const hal::host::sim::WriteResult result =
-        inverter.model().Write(drive_link::reg::CParameter(504 + i), values[i], hal::host::sim::WriteTarget::kRamAndEeprom);
+    const sim::WriteResult result =
+        inverter.model().Write(drive_link::reg::CParameter(504 + i), values[i], sim::WriteTarget::kRamAndEeprom);
     if (!result.ok()) {
       error = "--ip: the inverter refused c" + std::to_string(504 + i) + " (" +
-              hal::host::sim::WriteOutcomeName(result.outcome) + ")";
+              sim::WriteOutcomeName(result.outcome) + ")";
       return false;
     }
   }

@@ -67,13 +67,13 @@ bool ParseParam(const std::string& text, HostOptions& options) {
 
 // A preset goes into the EEPROM of a new inverter, so it must name an EEPROM parameter hosts may write
 // and lie within its static limits. Run-time limits (ul <= fh...) are the model's, when it is applied.
-bool CheckParam(ParamPreset& preset, hal::host::sim::Model model, std::string& reason) {
+bool CheckParam(ParamPreset& preset, sim::Model model, std::string& reason) {
   const std::string name = preset.text.substr(0, preset.text.find('='));
-  const hal::host::sim::RegisterInfo* info = ResolveRegister(name, model, reason);
+  const sim::RegisterInfo* info = ResolveRegister(name, model, reason);
   if (info == nullptr) return false;
-  if (info->storage != hal::host::sim::StorageClass::kEeprom || !info->HostWritable()) {
+  if (info->storage != sim::StorageClass::kEeprom || !info->HostWritable()) {
     reason = std::string(info->title) + " is not a parameter hosts keep in the EEPROM (" +
-             hal::host::sim::StorageClassName(info->storage) +
+             sim::StorageClassName(info->storage) +
              (info->HostWritable() ? "" : ", not host-writable") + ")";
     return false;
   }
@@ -206,7 +206,7 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
     } else if (flag == "--param") {
       ok = ParseParam(value, options);
     } else if (flag == "--model") {
-      const std::optional<hal::host::sim::Model> model = hal::host::sim::ModelFromName(value);
+      const std::optional<sim::Model> model = sim::ModelFromName(value);
       ok = model.has_value();
       if (ok) options.model = *model;
     } else if (flag == "--sim-processing-ms") {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "inverter_sim/register_table.h"
+#include "sim/register_table.h"
 #include "tcp_keepalive.h"
 
 namespace host {
@@ -32,9 +32,9 @@ struct HostOptions {
   std::string pcap_path;
   std::string sim_control_path;
   // The simulated inverter.
-  hal::host::sim::Model model = hal::host::sim::Model::kVfMb1;
+  sim::Model model = sim::Model::kVfMb1;
   std::vector<ParamPreset> params;  // in order; applied only to a new inverter (no EEPROM file yet)
-  bool rs485_profile = false;       // 19200 baud 8E1, 20 ms processing (hal::host::sim::Rs485Profile())
+  bool rs485_profile = false;       // 19200 baud 8E1, 20 ms processing (sim::Rs485Profile())
   int sim_processing_ms = -1;       // the inverter's processing delay; -1: the profile's (2 ms or 20 ms)
   // --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT: keepalive timing of the card's TCP connections (tests
   // shorten it to see a vanished peer dropped); default lwipopts.h's 60 s, 10 s, 6.

@@ -7,13 +7,12 @@
 #include <cstdio>
 #include <system_error>
 
-#include "inverter_sim/register_numbers.h"
+#include "sim/register_numbers.h"
 #include "register_names.h"
 
 namespace host {
 namespace {
 
-namespace sim = hal::host::sim;
 
 // A delayed reply without a delay-ms: longer than the card's reply timeout (100 ms plus wire time,
 // docs/drive-link.md), so the card sees a timeout and then the late reply as a stray frame.

@@ -16,8 +16,8 @@
 namespace host {
 namespace {
 
-using hal::host::sim::InverterModel;
-using hal::host::sim::ModelName;
+using sim::InverterModel;
+using sim::ModelName;
 
 enum class FileState { kMissing, kRead, kUnreadable };
 
@@ -42,7 +42,7 @@ std::string CheckLineFor(std::string_view image) {
 }
 
 // Why the file was refused, in words: a failed check, or another model's image.
-std::string RefusalReason(const std::string& file, hal::host::sim::Model model) {
+std::string RefusalReason(const std::string& file, sim::Model model) {
   const std::optional<std::string_view> image = EepromImageOf(file);
   if (!image) return "its check line is missing or does not match (cut short, damaged, or from an older version)";
   std::istringstream lines{std::string(*image)};
@@ -91,9 +91,9 @@ std::optional<std::string_view> EepromImageOf(std::string_view file) {
   return image;
 }
 
-hal::host::sim::ServerConfig ServerConfigFromOptions(const HostOptions& options) {
-  hal::host::sim::ServerConfig config =
-      options.rs485_profile ? hal::host::sim::Rs485Profile() : hal::host::sim::ServerConfig{};
+sim::ServerConfig ServerConfigFromOptions(const HostOptions& options) {
+  sim::ServerConfig config =
+      options.rs485_profile ? sim::Rs485Profile() : sim::ServerConfig{};
   if (options.sim_processing_ms >= 0) {
     config.processing_delay = static_cast<hal::Micros>(options.sim_processing_ms) * hal::kMicrosPerMilli;
   }
@@ -138,14 +138,14 @@ std::unique_ptr<SimulatedInverter> SimulatedInverter::Create(const SimInverterCo
     }
     self.started_new_ = true;
     for (const ParamPreset& preset : config.presets) {
-      const hal::host::sim::RegisterInfo* info = hal::host::sim::FindRegister(preset.number, config.model);
-      const hal::host::sim::WriteResult result =
-          info == nullptr ? hal::host::sim::WriteResult{hal::host::sim::WriteOutcome::kNoSuchRegister, false}
+      const sim::RegisterInfo* info = sim::FindRegister(preset.number, config.model);
+      const sim::WriteResult result =
+          info == nullptr ? sim::WriteResult{sim::WriteOutcome::kNoSuchRegister, false}
                           : self.model_.Write(preset.number, info->ToWord(preset.value),
-                                              hal::host::sim::WriteTarget::kRamAndEeprom);
+                                              sim::WriteTarget::kRamAndEeprom);
       if (!result.ok()) {
         error = "--param " + preset.text + ": refused by the inverter (" +
-                hal::host::sim::WriteOutcomeName(result.outcome) + ")";
+                sim::WriteOutcomeName(result.outcome) + ")";
         return nullptr;
       }
     }

@@ -33,20 +33,20 @@
 #include "hal/clock.h"
 #include "hal/serial_port.h"
 #include "host_options.h"
-#include "inverter_sim/inverter_model.h"
-#include "inverter_sim/protocol_server.h"
+#include "sim/inverter_model.h"
+#include "sim/protocol_server.h"
 
 namespace host {
 
 struct SimInverterConfig {
-  hal::host::sim::Model model = hal::host::sim::Model::kVfMb1;
+  sim::Model model = sim::Model::kVfMb1;
   std::string directory;             // where the EEPROM file lives: <state dir>/inverter
   std::vector<ParamPreset> presets;  // applied to a new inverter only
-  hal::host::sim::ServerConfig server;
+  sim::ServerConfig server;
 };
 
 // The server settings the command line asks for: --rs485-profile, --sim-processing-ms.
-hal::host::sim::ServerConfig ServerConfigFromOptions(const HostOptions& options);
+sim::ServerConfig ServerConfigFromOptions(const HostOptions& options);
 
 // The file for an image (the image and its check line), and the image in a file whose check line is
 // there and matches (nothing otherwise).
@@ -70,8 +70,8 @@ class SimulatedInverter final : public firmware::Service {
   SimulatedInverter(const SimulatedInverter&) = delete;
   SimulatedInverter& operator=(const SimulatedInverter&) = delete;
 
-  hal::host::sim::InverterModel& model() { return model_; }
-  hal::host::sim::InverterProtocolServer& server() { return server_; }
+  sim::InverterModel& model() { return model_; }
+  sim::InverterProtocolServer& server() { return server_; }
   // Register with the PollWaiter (the server's timers); the line's own SocketSerialPort wakes it on bytes.
   hal::host::PollSource& poll_source() { return poll_source_; }
   const hal::Clock& clock() const { return clock_; }
@@ -105,9 +105,9 @@ class SimulatedInverter final : public firmware::Service {
   const hal::Clock& clock_;
   std::FILE* log_;
   std::string path_;
-  hal::host::sim::InverterModel model_;
-  hal::host::sim::InverterProtocolServer server_;
-  hal::host::sim::ProtocolServerPollSource poll_source_{server_};
+  sim::InverterModel model_;
+  sim::InverterProtocolServer server_;
+  sim::ProtocolServerPollSource poll_source_{server_};
 
   bool started_new_ = false;
   std::string saved_image_;  // what the file holds (empty: nothing stored yet)

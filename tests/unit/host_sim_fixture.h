@@ -57,7 +57,7 @@ class SimInverterFixture : public ::testing::Test {
     return std::string(log_buffer_, log_size_);
   }
   std::string FilePath() const {
-    return config_.directory + "/" + hal::host::sim::ModelName(config_.model) + ".eeprom";
+    return config_.directory + "/" + sim::ModelName(config_.model) + ".eeprom";
   }
   std::string ReadText(const std::string& path) const {
     std::ifstream in(path);

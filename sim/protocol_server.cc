@@ -1,10 +1,10 @@
-#include "inverter_sim/protocol_server.h"
+#include "sim/protocol_server.h"
 
 #include <algorithm>
 #include <optional>
 #include <span>
 
-namespace hal::host::sim {
+namespace sim {
 
 namespace wire = drive_link::wire;
 
@@ -84,7 +84,7 @@ ServerConfig Rs485Profile() {
   ServerConfig config;
   config.baud = 19200;
   config.bits_per_character = 11;
-  config.processing_delay = 20 * kMicrosPerMilli;
+  config.processing_delay = 20 * hal::kMicrosPerMilli;
   return config;
 }
 
@@ -116,13 +116,13 @@ std::uint8_t InverterProtocolServer::inverter_number() const {
 }
 
 hal::Micros InverterProtocolServer::TransmissionTime(std::size_t bytes) const {
-  const hal::Micros bits = static_cast<hal::Micros>(bytes) * config_.bits_per_character * kMicrosPerSecond;
+  const hal::Micros bits = static_cast<hal::Micros>(bytes) * config_.bits_per_character * hal::kMicrosPerSecond;
   return (bits + config_.baud - 1) / config_.baud;
 }
 
 hal::Micros InverterProtocolServer::ProcessingDelay() const {
   const base::Result<std::uint16_t> f805 = model_.Read(kF805WaitingTime);
-  const hal::Micros waiting = f805.ok() ? static_cast<hal::Micros>(*f805) * 10 * kMicrosPerMilli : 0;
+  const hal::Micros waiting = f805.ok() ? static_cast<hal::Micros>(*f805) * 10 * hal::kMicrosPerMilli : 0;
   return std::max(config_.processing_delay, waiting);
 }
 
@@ -152,7 +152,7 @@ void InverterProtocolServer::Poll(hal::Micros now) {
 
 hal::Micros InverterProtocolServer::NextDeadline() const {
   hal::Micros deadline = reader_.NextDeadline();
-  if (write_retry_at_ != kNever) {
+  if (write_retry_at_ != hal::kNever) {
     deadline = std::min(deadline, write_retry_at_);  // the line refused bytes: retry later, never spin
   } else if (!pending_.empty()) {
     deadline = std::min(deadline, pending_.front().release_at);
@@ -317,8 +317,8 @@ void InverterProtocolServer::Queue(const base::Result<std::size_t>& encoded, std
 }
 
 void InverterProtocolServer::Transmit(hal::Micros now) {
-  if (write_retry_at_ != kNever && now < write_retry_at_) return;
-  write_retry_at_ = kNever;
+  if (write_retry_at_ != hal::kNever && now < write_retry_at_) return;
+  write_retry_at_ = hal::kNever;
   while (!pending_.empty() && pending_.front().release_at <= now) {
     PendingReply& reply = pending_.front();
     const std::span<const std::uint8_t> rest =
@@ -338,10 +338,10 @@ void InverterProtocolServer::Transmit(hal::Micros now) {
   }
 }
 
-void ProtocolServerPollSource::PrepareWait(PollSet& /*set*/, Micros& deadline) {
+void ProtocolServerPollSource::PrepareWait(hal::host::PollSet& /*set*/, hal::Micros& deadline) {
   deadline = std::min(deadline, server_.NextDeadline());
 }
 
-void ProtocolServerPollSource::AfterWait(const PollSet& /*set*/) { server_.Poll(server_.clock().NowMicros()); }
+void ProtocolServerPollSource::AfterWait(const hal::host::PollSet& /*set*/) { server_.Poll(server_.clock().NowMicros()); }
 
-}  // namespace hal::host::sim
+}  // namespace sim

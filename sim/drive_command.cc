@@ -1,8 +1,8 @@
-#include "inverter_sim/drive_command.h"
+#include "sim/drive_command.h"
 
 #include <cstddef>
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 bool Bit(std::uint16_t word, std::uint16_t mask) { return (word & mask) != 0; }
@@ -230,4 +230,4 @@ const char* FrequencySourceName(FrequencySource source) {
   return "?";
 }
 
-}  // namespace hal::host::sim
+}  // namespace sim

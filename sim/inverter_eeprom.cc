@@ -18,9 +18,9 @@
 #include <optional>
 #include <system_error>
 
-#include "inverter_sim/inverter_model.h"
+#include "sim/inverter_model.h"
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 constexpr std::string_view kFormatLine = "format 1";
@@ -70,7 +70,7 @@ std::int32_t InverterModel::ActiveValue(std::uint16_t number) const {
 }
 
 std::string InverterModel::SerializeEeprom() const {
-  std::string out = "# simulated VF-MB1/S15 inverter EEPROM (hal/host/inverter_sim/inverter_eeprom.cc)\n";
+  std::string out = "# simulated VF-MB1/S15 inverter EEPROM (sim/inverter_eeprom.cc)\n";
   out += kFormatLine;
   out += "\nmodel ";
   out += ModelName(model_);
@@ -164,4 +164,4 @@ bool InverterModel::LoadEeprom(std::string_view text) {
   return true;
 }
 
-}  // namespace hal::host::sim
+}  // namespace sim

@@ -21,11 +21,11 @@
 #include "base/status.h"
 #include "drive_link/drive_registers.h"
 #include "hal/clock.h"
-#include "inverter_sim/drive_command.h"
-#include "inverter_sim/motor_model.h"
-#include "inverter_sim/register_table.h"
+#include "sim/drive_command.h"
+#include "sim/motor_model.h"
+#include "sim/register_table.h"
 
-namespace hal::host::sim {
+namespace sim {
 
 // Toshiba protocol W writes RAM and EEPROM, P writes RAM only (E6581913 caution page; seed 003 §13.8).
 enum class WriteTarget : std::uint8_t { kRamAndEeprom, kRamOnly };
@@ -238,4 +238,4 @@ class InverterModel {
   std::int32_t loss_action_ = 1;
 };
 
-}  // namespace hal::host::sim
+}  // namespace sim

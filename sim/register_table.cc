@@ -1,4 +1,4 @@
-#include "inverter_sim/register_table.h"
+#include "sim/register_table.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -8,7 +8,7 @@
 // Written by tools/gen_register_table.py from registers.csv into the build directory.
 #include "register_table.inc"
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 constexpr std::span<const RegisterInfo> kTable(generated::kRegisters);
@@ -103,4 +103,4 @@ std::optional<Model> ModelFromName(std::string_view name) {
   return std::nullopt;
 }
 
-}  // namespace hal::host::sim
+}  // namespace sim

@@ -10,7 +10,7 @@
 
 #include "drive_link/drive_registers.h"
 
-namespace hal::host::sim::reg {
+namespace sim::reg {
 
 // Shared with the card.
 using drive_link::reg::kAcc;
@@ -129,4 +129,4 @@ constexpr std::uint16_t PresetSpeed(int n) { return DecimalDigits(n <= 7 ? 17 + 
 static_assert(PresetSpeed(1) == 0x0018 && PresetSpeed(2) == 0x0019 && PresetSpeed(3) == 0x0020 &&
               PresetSpeed(7) == 0x0024 && PresetSpeed(8) == 0x0287 && PresetSpeed(15) == 0x0294);
 
-}  // namespace hal::host::sim::reg
+}  // namespace sim::reg

@@ -1,14 +1,14 @@
 // Registers, writes and their side effects, trips, resets, power cycles, inputs. The drive state
 // (command, ramps, monitors) is in drive_state.cc, the EEPROM image in inverter_eeprom.cc.
-#include "inverter_sim/inverter_model.h"
+#include "sim/inverter_model.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
 
-#include "inverter_sim/register_numbers.h"
+#include "sim/register_numbers.h"
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 bool Rising(std::uint16_t old_word, std::uint16_t new_word, std::uint16_t mask) {
@@ -323,4 +323,4 @@ void InverterModel::ApplyLossAction() {
   ApplyImmediateEffects();
 }
 
-}  // namespace hal::host::sim
+}  // namespace sim

@@ -1,9 +1,9 @@
-#include "inverter_sim/motor_model.h"
+#include "sim/motor_model.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 double Sign(double x) { return x < 0.0 ? -1.0 : 1.0; }
@@ -87,4 +87,4 @@ Electrical ComputeElectrical(const MotorParameters& p, double output_hz, double 
   return e;
 }
 
-}  // namespace hal::host::sim
+}  // namespace sim

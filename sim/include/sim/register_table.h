@@ -22,7 +22,7 @@
 #include <span>
 #include <string_view>
 
-namespace hal::host::sim {
+namespace sim {
 
 // How a register keeps its value.
 enum class StorageClass : std::uint8_t {
@@ -132,4 +132,4 @@ const char* StorageClassName(StorageClass storage);
 const char* ModelName(Model model);
 std::optional<Model> ModelFromName(std::string_view name);
 
-}  // namespace hal::host::sim
+}  // namespace sim

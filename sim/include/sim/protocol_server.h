@@ -23,10 +23,10 @@
 #include "drive_link/wire/toshiba_frame.h"
 #include "hal/clock.h"
 #include "hal/serial_port.h"
-#include "inverter_sim/inverter_model.h"
+#include "sim/inverter_model.h"
 #include "poll_waiter.h"
 
-namespace hal::host::sim {
+namespace sim {
 
 struct ServerConfig {
   // Line speed. Reply bytes take bits_per_character / baud seconds each on the wire. The default 11 bits
@@ -37,7 +37,7 @@ struct ServerConfig {
   // Time from the end of a request to the start of its reply (the manual's "inverter processing time",
   // at most 20 ms, about 8 ms on a VF-S9). 2 ms by default: fast tests, still visible. F805 (waiting time)
   // lengthens it when larger (seed 003 §7.4).
-  hal::Micros processing_delay = 2 * kMicrosPerMilli;
+  hal::Micros processing_delay = 2 * hal::kMicrosPerMilli;
   // The inverter number; kUseF802 = the model's F802 at each frame (F802 acts at once, seed 003 §7.2).
   static constexpr int kUseF802 = -1;
   int inverter_number = kUseF802;
@@ -147,7 +147,7 @@ class InverterProtocolServer : private drive_link::wire::FrameSink {
   ServerConfig config_;
   drive_link::wire::SerialFrameReader reader_{line_, drive_link::wire::Direction::kRequests};
   hal::Micros line_free_at_ = 0;  // end of the last queued reply's transmission
-  hal::Micros write_retry_at_ = kNever;  // a write was refused (line buffer full): try again then
+  hal::Micros write_retry_at_ = hal::kNever;  // a write was refused (line buffer full): try again then
   std::deque<PendingReply> pending_;
   std::vector<ActiveFault> faults_;
   ServerCounters counters_;
@@ -155,14 +155,14 @@ class InverterProtocolServer : private drive_link::wire::FrameSink {
 
 // Lets the host's PollWaiter sleep until the server's next deadline and run Poll after every wait. The
 // line's own PollSource (SocketSerialPort) must be registered too: it wakes the waiter when bytes arrive.
-class ProtocolServerPollSource final : public PollSource {
+class ProtocolServerPollSource final : public hal::host::PollSource {
  public:
   explicit ProtocolServerPollSource(InverterProtocolServer& server) : server_(server) {}
-  void PrepareWait(PollSet& set, Micros& deadline) override;
-  void AfterWait(const PollSet& set) override;
+  void PrepareWait(hal::host::PollSet& set, hal::Micros& deadline) override;
+  void AfterWait(const hal::host::PollSet& set) override;
 
  private:
   InverterProtocolServer& server_;
 };
 
-}  // namespace hal::host::sim
+}  // namespace sim

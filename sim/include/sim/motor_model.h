@@ -4,7 +4,7 @@
 // docs/simulator.md ("Behaviour model").
 #pragma once
 
-namespace hal::host::sim {
+namespace sim {
 
 // Ramp rates in 0.01 Hz per second. Toshiba's acceleration time is the time from 0 Hz to the maximum
 // frequency fh, so rate = fh / time (same for deceleration).
@@ -66,4 +66,4 @@ inline constexpr double kDcBrakingCurrentFraction = 0.5;  // DC braking current 
 inline constexpr double kDriveEfficiency = 0.95;         // input power = output power / efficiency
 }  // namespace motor_constant
 
-}  // namespace hal::host::sim
+}  // namespace sim

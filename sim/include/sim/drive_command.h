@@ -20,7 +20,7 @@
 
 #include "drive_link/drive_registers.h"
 
-namespace hal::host::sim {
+namespace sim {
 
 enum class CommandSource : std::uint8_t { kTerminal, kPanel, kRs485, kCanOpen, kOption };
 enum class FrequencySource : std::uint8_t {
@@ -125,4 +125,4 @@ const char* FrequencySourceName(FrequencySource source);
 // default of seed 004 §2 (c154/c155).
 inline constexpr std::int32_t kJogFrequency = 500;
 
-}  // namespace hal::host::sim
+}  // namespace sim

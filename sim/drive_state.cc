@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstddef>
 
-#include "inverter_sim/inverter_model.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/inverter_model.h"
+#include "sim/register_numbers.h"
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 constexpr double kAmbientC = 25.0;
@@ -369,4 +369,4 @@ std::int32_t InverterModel::MonitorValue(const RegisterInfo& info) const {
   }
 }
 
-}  // namespace hal::host::sim
+}  // namespace sim
