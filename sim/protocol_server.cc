@@ -342,6 +342,8 @@ void ProtocolServerPollSource::PrepareWait(hal::host::PollSet& /*set*/, hal::Mic
   deadline = std::min(deadline, server_.NextDeadline());
 }
 
-void ProtocolServerPollSource::AfterWait(const hal::host::PollSet& /*set*/) { server_.Poll(server_.clock().NowMicros()); }
+void ProtocolServerPollSource::AfterWait(const hal::host::PollSet& /*set*/) {
+  server_.Poll(server_.clock().NowMicros());
+}
 
 }  // namespace sim

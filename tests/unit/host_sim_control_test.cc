@@ -1,4 +1,4 @@
-// The control socket's inverter commands (firmware/host/sim_control.h): exact answers for get, set,
+// The control socket's inverter commands (sim/host/sim_control.h): exact answers for get, set,
 // terminal, trip, inject and status, and their refusals.
 #include "sim_control.h"
 
@@ -14,6 +14,7 @@ namespace host::test {
 namespace {
 
 namespace reg = sim::reg;
+using sim::HandleSimCommand;
 
 class SimControl : public SimInverterFixture {
  protected:

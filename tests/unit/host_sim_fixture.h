@@ -19,6 +19,13 @@
 
 namespace host::test {
 
+// The host card runs the simulator of sim/host/ (namespace sim).
+using sim::EepromFileContents;
+using sim::EepromImageOf;
+using sim::ParamPreset;
+using sim::SimInverterConfig;
+using sim::SimulatedInverter;
+
 inline constexpr hal::Micros kSecond = hal::kMicrosPerSecond;
 
 class SimInverterFixture : public ::testing::Test {
@@ -32,6 +39,7 @@ class SimInverterFixture : public ::testing::Test {
     line_ = std::move(pair.value().inverter);
     log_ = open_memstream(&log_buffer_, &log_size_);
     config_.directory = dir_ + "/inverter";
+    config_.program = "ipe002z-host";
   }
   ~SimInverterFixture() override {
     inverter_.reset();

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "host_options.h"
 #include "host_sim_fixture.h"
 #include "sim/register_numbers.h"
 
@@ -11,6 +12,7 @@ namespace host::test {
 namespace {
 
 namespace reg = sim::reg;
+using sim::ServerConfigFromOptions;
 
 ParamPreset Preset(const char* text, std::uint16_t number, std::int32_t value) { return {text, number, value}; }
 

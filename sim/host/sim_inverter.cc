@@ -13,11 +13,8 @@
 #include "atomic_file.h"
 #include "base/crc32.h"
 
-namespace host {
+namespace sim {
 namespace {
-
-using sim::InverterModel;
-using sim::ModelName;
 
 enum class FileState { kMissing, kRead, kUnreadable };
 
@@ -42,7 +39,7 @@ std::string CheckLineFor(std::string_view image) {
 }
 
 // Why the file was refused, in words: a failed check, or another model's image.
-std::string RefusalReason(const std::string& file, sim::Model model) {
+std::string RefusalReason(const std::string& file, Model model) {
   const std::optional<std::string_view> image = EepromImageOf(file);
   if (!image) return "its check line is missing or does not match (cut short, damaged, or from an older version)";
   std::istringstream lines{std::string(*image)};
@@ -91,19 +88,11 @@ std::optional<std::string_view> EepromImageOf(std::string_view file) {
   return image;
 }
 
-sim::ServerConfig ServerConfigFromOptions(const HostOptions& options) {
-  sim::ServerConfig config =
-      options.rs485_profile ? sim::Rs485Profile() : sim::ServerConfig{};
-  if (options.sim_processing_ms >= 0) {
-    config.processing_delay = static_cast<hal::Micros>(options.sim_processing_ms) * hal::kMicrosPerMilli;
-  }
-  return config;
-}
-
 SimulatedInverter::SimulatedInverter(const SimInverterConfig& config, hal::SerialPort& line,
                                      const hal::Clock& clock, std::FILE* log)
     : clock_(clock),
       log_(log),
+      program_(config.program),
       path_(config.directory + "/" + ModelName(config.model) + ".eeprom"),
       model_(config.model),
       server_(model_, line, clock, config.server) {}
@@ -138,14 +127,14 @@ std::unique_ptr<SimulatedInverter> SimulatedInverter::Create(const SimInverterCo
     }
     self.started_new_ = true;
     for (const ParamPreset& preset : config.presets) {
-      const sim::RegisterInfo* info = sim::FindRegister(preset.number, config.model);
-      const sim::WriteResult result =
-          info == nullptr ? sim::WriteResult{sim::WriteOutcome::kNoSuchRegister, false}
+      const RegisterInfo* info = FindRegister(preset.number, config.model);
+      const WriteResult result =
+          info == nullptr ? WriteResult{WriteOutcome::kNoSuchRegister, false}
                           : self.model_.Write(preset.number, info->ToWord(preset.value),
-                                              sim::WriteTarget::kRamAndEeprom);
+                                              WriteTarget::kRamAndEeprom);
       if (!result.ok()) {
         error = "--param " + preset.text + ": refused by the inverter (" +
-                sim::WriteOutcomeName(result.outcome) + ")";
+                WriteOutcomeName(result.outcome) + ")";
         return nullptr;
       }
     }
@@ -198,8 +187,8 @@ bool SimulatedInverter::SaveIfChanged() {
 
 void SimulatedInverter::Warn(const std::string& text) {
   if (log_ == nullptr) return;
-  std::fprintf(log_, "ipe002z-host: warning: %s\n", text.c_str());
+  std::fprintf(log_, "%s%swarning: %s\n", program_.c_str(), program_.empty() ? "" : ": ", text.c_str());
   std::fflush(log_);
 }
 
-}  // namespace host
+}  // namespace sim

@@ -1,6 +1,8 @@
-// The simulated inverter behind ipe002z-host: the behaviour model, its Toshiba-protocol server on the
+// The simulated inverter as a process runs it: the behaviour model, its Toshiba-protocol server on the
 // inverter end of the serial line, and its EEPROM image kept in the state dir, so the drive keeps its
-// parameters across runs and restarts like a real one (docs/simulator.md "In ipe002z-host").
+// parameters across runs and restarts like a real one. ipe002z-host runs one in-process on a socket pair
+// (docs/simulator.md "In ipe002z-host"); ipe002z-inverter runs one on its own, on a listening socket
+// (docs/simulator.md "ipe002z-inverter").
 //
 // The EEPROM file is `<state dir>/inverter/<model>.eeprom` (vf-mb1.eeprom, vf-s15.eeprom): the model's
 // text image (InverterModel::SerializeEeprom) followed by one line `check <crc>`, the CRC-32 of every
@@ -28,32 +30,29 @@
 #include <vector>
 
 #include "atomic_file.h"
-
-#include "event_loop.h"
 #include "hal/clock.h"
 #include "hal/serial_port.h"
-#include "host_options.h"
+#include "inverter_options.h"
+#include "poll_waiter.h"
 #include "sim/inverter_model.h"
 #include "sim/protocol_server.h"
 
-namespace host {
+namespace sim {
 
 struct SimInverterConfig {
-  sim::Model model = sim::Model::kVfMb1;
+  Model model = Model::kVfMb1;
   std::string directory;             // where the EEPROM file lives: <state dir>/inverter
   std::vector<ParamPreset> presets;  // applied to a new inverter only
-  sim::ServerConfig server;
+  ServerConfig server;
+  std::string program;               // who warns: "ipe002z-host: warning: ..."
 };
-
-// The server settings the command line asks for: --rs485-profile, --sim-processing-ms.
-sim::ServerConfig ServerConfigFromOptions(const HostOptions& options);
 
 // The file for an image (the image and its check line), and the image in a file whose check line is
 // there and matches (nothing otherwise).
 std::string EepromFileContents(std::string_view image);
 std::optional<std::string_view> EepromImageOf(std::string_view file);
 
-class SimulatedInverter final : public firmware::Service {
+class SimulatedInverter final {
  public:
   static constexpr hal::Micros kSaveCheckInterval = hal::kMicrosPerSecond;
   static constexpr hal::Micros kCounterSaveInterval = 60 * hal::kMicrosPerSecond;
@@ -70,18 +69,21 @@ class SimulatedInverter final : public firmware::Service {
   SimulatedInverter(const SimulatedInverter&) = delete;
   SimulatedInverter& operator=(const SimulatedInverter&) = delete;
 
-  sim::InverterModel& model() { return model_; }
-  sim::InverterProtocolServer& server() { return server_; }
-  // Register with the PollWaiter (the server's timers); the line's own SocketSerialPort wakes it on bytes.
+  InverterModel& model() { return model_; }
+  InverterProtocolServer& server() { return server_; }
+  const InverterProtocolServer& server() const { return server_; }
+  // Register with the PollWaiter (the server's timers); the line's own PollSource (SocketSerialPort,
+  // ListeningSerialPort) wakes it on bytes.
   hal::host::PollSource& poll_source() { return poll_source_; }
   const hal::Clock& clock() const { return clock_; }
 
   // Moves the model's time to the clock's now; every control command starts with it.
   void AdvanceToNow() { model_.Advance(clock_.NowMicros()); }
 
-  // firmware::Service: every kSaveCheckInterval, moves the model's time and stores the image when due.
-  void Poll(hal::Micros now) override;
-  hal::Micros NextDeadline() const override { return next_check_; }
+  // The store check, run like a service of an event loop (the host card adds it to the card's loop):
+  // every kSaveCheckInterval, moves the model's time and stores the image when due.
+  void Poll(hal::Micros now);
+  hal::Micros NextDeadline() const { return next_check_; }
 
   // Power off and on (InverterModel::PowerCycle: RAM-only registers back to defaults, trips cleared),
   // then stores the image.
@@ -104,10 +106,11 @@ class SimulatedInverter final : public firmware::Service {
 
   const hal::Clock& clock_;
   std::FILE* log_;
+  std::string program_;
   std::string path_;
-  sim::InverterModel model_;
-  sim::InverterProtocolServer server_;
-  sim::ProtocolServerPollSource poll_source_{server_};
+  InverterModel model_;
+  InverterProtocolServer server_;
+  ProtocolServerPollSource poll_source_{server_};
 
   bool started_new_ = false;
   std::string saved_image_;  // what the file holds (empty: nothing stored yet)
@@ -119,4 +122,4 @@ class SimulatedInverter final : public firmware::Service {
   std::optional<hal::host::PowerCut> power_cut_;
 };
 
-}  // namespace host
+}  // namespace sim

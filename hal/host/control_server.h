@@ -6,19 +6,29 @@
 // At most kMaxClients at once; a further client gets "error too many clients" and is closed.
 //
 // The server only frames lines; what a command does is decided by the handler the composition root
-// installs, so the inverter simulator and later issues can add commands without touching this file.
+// installs (the host card's, the stand-alone simulated inverter's), so they add commands without
+// touching this file. A command is words separated by spaces: SplitCommand cuts one.
 #pragma once
 
+#include <cstddef>
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "poll_waiter.h"
 
-namespace host {
+namespace hal::host {
 
-class ControlServer final : public hal::host::PollSource {
+// Words a command has at most: the longest is "inject delay until-cleared 150".
+inline constexpr std::size_t kMaxCommandWords = 4;
+
+// Splits `command` at spaces (any number of them) into `words`. Returns how many there are, or
+// words.size() + 1 when there are more than fit.
+std::size_t SplitCommand(std::string_view command, std::span<std::string_view> words);
+
+class ControlServer final : public PollSource {
  public:
   static constexpr std::size_t kMaxClients = 4;
   static constexpr std::size_t kMaxLineBytes = 512;
@@ -35,8 +45,8 @@ class ControlServer final : public hal::host::PollSource {
   // Binds and listens (removes a stale socket file first). False with `error` set on failure.
   bool Start(std::string& error);
 
-  void PrepareWait(hal::host::PollSet& set, hal::Micros& deadline) override;
-  void AfterWait(const hal::host::PollSet& set) override;
+  void PrepareWait(PollSet& set, Micros& deadline) override;
+  void AfterWait(const PollSet& set) override;
 
  private:
   struct Client {
@@ -58,4 +68,4 @@ class ControlServer final : public hal::host::PollSource {
   std::vector<Client> clients_;
 };
 
-}  // namespace host
+}  // namespace hal::host

@@ -4,7 +4,7 @@
 #include <sys/signalfd.h>
 #include <unistd.h>
 
-namespace host {
+namespace hal::host {
 
 SignalSource::SignalSource() {
   sigset_t set;
@@ -19,14 +19,14 @@ SignalSource::~SignalSource() {
   if (fd_ >= 0) close(fd_);
 }
 
-void SignalSource::PrepareWait(hal::host::PollSet& set, hal::Micros& /*deadline*/) {
+void SignalSource::PrepareWait(PollSet& set, Micros& /*deadline*/) {
   if (fd_ >= 0) slot_ = set.Add(fd_, POLLIN);
 }
 
-void SignalSource::AfterWait(const hal::host::PollSet& set) {
+void SignalSource::AfterWait(const PollSet& set) {
   if (fd_ < 0 || (set.Revents(slot_) & POLLIN) == 0) return;
   signalfd_siginfo info{};
   while (read(fd_, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) stop_requested_ = true;
 }
 
-}  // namespace host
+}  // namespace hal::host

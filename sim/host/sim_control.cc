@@ -7,12 +7,11 @@
 #include <cstdio>
 #include <system_error>
 
-#include "sim/register_numbers.h"
 #include "register_names.h"
+#include "sim/register_numbers.h"
 
-namespace host {
+namespace sim {
 namespace {
-
 
 // A delayed reply without a delay-ms: longer than the card's reply timeout (100 ms plus wire time,
 // docs/drive-link.md), so the card sees a timeout and then the late reply as a stray frame.
@@ -23,10 +22,10 @@ struct NamedTrip {
   std::uint8_t code;
 };
 constexpr std::array<NamedTrip, 4> kNamedTrips = {{
-    {"E", sim::trip_code::kEmergencyStop},
-    {"err5", sim::trip_code::kRs485Timeout},
-    {"err8", sim::trip_code::kOptionCommunication},
-    {"e-23", sim::trip_code::kOptionFault},
+    {"E", trip_code::kEmergencyStop},
+    {"err5", trip_code::kRs485Timeout},
+    {"err8", trip_code::kOptionCommunication},
+    {"e-23", trip_code::kOptionFault},
 }};
 
 // The usage of each command; nullptr for a verb that is not an inverter command.
@@ -60,7 +59,7 @@ std::string Error(std::string_view reason) { return "error " + std::string(reaso
 
 void Get(std::string_view name, std::string& reply, SimulatedInverter& inverter) {
   std::string error;
-  const sim::RegisterInfo* info = ResolveRegister(name, inverter.model().model(), error);
+  const RegisterInfo* info = ResolveRegister(name, inverter.model().model(), error);
   if (info == nullptr) {
     reply += Error(error);
     return;
@@ -75,16 +74,16 @@ void Get(std::string_view name, std::string& reply, SimulatedInverter& inverter)
 
 // A panel write: RAM and EEPROM (W), refused where the model refuses a W.
 void Set(std::string_view name, std::string_view value_text, std::string& reply, SimulatedInverter& inverter) {
-  sim::InverterModel& model = inverter.model();
+  InverterModel& model = inverter.model();
   std::string error;
-  const sim::RegisterInfo* info = ResolveRegister(name, model.model(), error);
+  const RegisterInfo* info = ResolveRegister(name, model.model(), error);
   if (info == nullptr) {
     reply += Error(error);
     return;
   }
   const std::string title = info->title;
-  if (info->access == sim::Access::kReadOnly) {
-    reply += Error(title + " is read-only (" + sim::StorageClassName(info->storage) + ")");
+  if (info->access == Access::kReadOnly) {
+    reply += Error(title + " is read-only (" + StorageClassName(info->storage) + ")");
     return;
   }
   std::int32_t value = 0;
@@ -97,24 +96,24 @@ void Set(std::string_view name, std::string_view value_text, std::string& reply,
     reply += Error(title + ": " + std::to_string(value) + " " + error);
     return;
   }
-  const sim::WriteResult result = model.Write(info->number, info->ToWord(value), sim::WriteTarget::kRamAndEeprom);
+  const WriteResult result = model.Write(info->number, info->ToWord(value), WriteTarget::kRamAndEeprom);
   switch (result.outcome) {
-    case sim::WriteOutcome::kOk:
+    case WriteOutcome::kOk:
       break;
-    case sim::WriteOutcome::kOutOfRange:
+    case WriteOutcome::kOutOfRange:
       reply += Error(title + ": " + std::to_string(value) + " refused by a run-time limit (data error)");
       return;
-    case sim::WriteOutcome::kNotWritableWhileRunning:
+    case WriteOutcome::kNotWritableWhileRunning:
       reply += Error(title + ": not writable while the drive runs");
       return;
     default:
-      reply += Error(title + ": " + sim::WriteOutcomeName(result.outcome));
+      reply += Error(title + ": " + WriteOutcomeName(result.outcome));
       return;
   }
   reply += FormatRegisterValue(*info, *model.Read(info->number)) + "\nok\n";
 }
 
-void Terminal(std::string_view name, std::string_view state, std::string& reply, SimulatedInverter& inverter) {
+void TerminalCommand(std::string_view name, std::string_view state, std::string& reply, SimulatedInverter& inverter) {
   if (state != "on" && state != "off") {
     reply += Error(std::string("usage: ") + UsageOf("terminal"));
     return;
@@ -135,7 +134,7 @@ void Trip(std::string_view code_text, std::string& reply, SimulatedInverter& inv
     reply += Error(std::string("usage: ") + UsageOf("trip"));
     return;
   }
-  sim::InverterModel& model = inverter.model();
+  InverterModel& model = inverter.model();
   if (model.tripped()) {
     reply += Error("already tripped with code " + std::to_string(model.trip()) + " (the first trip holds)");
     return;
@@ -151,23 +150,23 @@ void Inject(std::span<const std::string_view> args, std::string& reply, Simulate
     reply += "ok\n";
     return;
   }
-  sim::Fault fault;
+  Fault fault;
   bool known = false;
-  for (sim::Fault::Kind kind : {sim::Fault::Kind::kDrop, sim::Fault::Kind::kDelay, sim::Fault::Kind::kCorrupt,
-                                sim::Fault::Kind::kSilent}) {
-    if (!args.empty() && args[0] == sim::FaultKindName(kind)) {
+  for (Fault::Kind kind : {Fault::Kind::kDrop, Fault::Kind::kDelay, Fault::Kind::kCorrupt,
+                                Fault::Kind::kSilent}) {
+    if (!args.empty() && args[0] == FaultKindName(kind)) {
       fault.kind = kind;
       known = true;
     }
   }
-  const bool delay = fault.kind == sim::Fault::Kind::kDelay;
+  const bool delay = fault.kind == Fault::Kind::kDelay;
   if (!known || args.size() > (delay ? 3u : 2u)) {
     reply += Error(usage);
     return;
   }
   if (args.size() >= 2) {
     if (args[1] == "until-cleared") {
-      fault.count = sim::Fault::kUntilCleared;
+      fault.count = Fault::kUntilCleared;
     } else if (!ParseDecimal(args[1], fault.count) || fault.count == 0) {
       reply += Error("count must be 1 or more, or until-cleared; " + usage);
       return;
@@ -219,7 +218,7 @@ const char* Priority(std::uint16_t fa06, std::uint16_t fa00, std::uint16_t bit) 
 // A trip outranks the reset silence (a trip during the power-on second is still a trip); a fault
 // reset clears the trip first, so it shows as "resetting".
 const char* StateName(SimulatedInverter& inverter) {
-  const sim::InverterModel& model = inverter.model();
+  const InverterModel& model = inverter.model();
   if (model.tripped()) return "tripped";
   if (model.in_reset(inverter.clock().NowMicros())) return "resetting";
   if (model.running()) return "running";
@@ -240,25 +239,25 @@ const char kSimControlHelp[] =
     "status                 the inverter's state as one JSON line\n";
 
 std::string InverterStatusJson(SimulatedInverter& inverter) {
-  const sim::InverterModel& model = inverter.model();
-  const sim::DriveCommand cmd = model.command();
-  const std::uint16_t fa06 = *model.Read(sim::reg::kFa06);
-  const std::uint16_t fa00 = *model.Read(sim::reg::kFa00);
+  const InverterModel& model = inverter.model();
+  const DriveCommand cmd = model.command();
+  const std::uint16_t fa06 = *model.Read(reg::kFa06);
+  const std::uint16_t fa00 = *model.Read(reg::kFa00);
   std::uint64_t eeprom_writes = 0;
-  for (const sim::RegisterInfo& info : sim::AllRegisters()) eeprom_writes += model.EepromWriteCount(info.number);
+  for (const RegisterInfo& info : AllRegisters()) eeprom_writes += model.EepromWriteCount(info.number);
 
   std::string json;
   Field(json, "state", Quoted(StateName(inverter)));
-  Field(json, "model", Quoted(sim::ModelName(model.model())));
+  Field(json, "model", Quoted(ModelName(model.model())));
   Field(json, "output_hz", Hertz(std::llround(model.output_frequency_signed())));
   Field(json, "target_hz", Hertz(model.target_frequency()));
-  Field(json, "command_source", Quoted(sim::CommandSourceName(cmd.command_source)));
-  Field(json, "frequency_source", Quoted(sim::FrequencySourceName(cmd.frequency_source)));
-  Field(json, "command_priority", Quoted(Priority(fa06, fa00, sim::command_bit::kCommandPriority)));
-  Field(json, "frequency_priority", Quoted(Priority(fa06, fa00, sim::command_bit::kFrequencyPriority)));
+  Field(json, "command_source", Quoted(CommandSourceName(cmd.command_source)));
+  Field(json, "frequency_source", Quoted(FrequencySourceName(cmd.frequency_source)));
+  Field(json, "command_priority", Quoted(Priority(fa06, fa00, command_bit::kCommandPriority)));
+  Field(json, "frequency_priority", Quoted(Priority(fa06, fa00, command_bit::kFrequencyPriority)));
   Field(json, "fa06", Quoted(Hex(fa06)));
-  Field(json, "fa07", std::to_string(*model.Read(sim::reg::kFa07)));
-  Field(json, "fd01", Quoted(Hex(*model.Read(sim::reg::kFd01))));
+  Field(json, "fa07", std::to_string(*model.Read(reg::kFa07)));
+  Field(json, "fd01", Quoted(Hex(*model.Read(reg::kFd01))));
   Field(json, "trip", std::to_string(model.trip()));
   Field(json, "eeprom_writes", std::to_string(eeprom_writes));
   return json + "}";
@@ -276,7 +275,7 @@ bool HandleSimCommand(std::span<const std::string_view> words, std::string& repl
   } else if (verb == "set" && count == 3) {
     Set(words[1], words[2], reply, inverter);
   } else if (verb == "terminal" && count == 3) {
-    Terminal(words[1], words[2], reply, inverter);
+    TerminalCommand(words[1], words[2], reply, inverter);
   } else if (verb == "trip" && count == 2) {
     Trip(words[1], reply, inverter);
   } else if (verb == "inject") {
@@ -289,4 +288,4 @@ bool HandleSimCommand(std::span<const std::string_view> words, std::string& repl
   return true;
 }
 
-}  // namespace host
+}  // namespace sim

@@ -4,9 +4,9 @@
 
 #include "poll_waiter.h"
 
-namespace host {
+namespace hal::host {
 
-class SignalSource final : public hal::host::PollSource {
+class SignalSource final : public PollSource {
  public:
   SignalSource();  // blocks SIGINT and SIGTERM for the process and opens the signalfd
   ~SignalSource() override;
@@ -14,8 +14,8 @@ class SignalSource final : public hal::host::PollSource {
   SignalSource& operator=(const SignalSource&) = delete;
 
   bool stop_requested() const { return stop_requested_; }
-  void PrepareWait(hal::host::PollSet& set, hal::Micros& deadline) override;
-  void AfterWait(const hal::host::PollSet& set) override;
+  void PrepareWait(PollSet& set, Micros& deadline) override;
+  void AfterWait(const PollSet& set) override;
 
  private:
   int fd_ = -1;
@@ -23,4 +23,4 @@ class SignalSource final : public hal::host::PollSource {
   bool stop_requested_ = false;
 };
 
-}  // namespace host
+}  // namespace hal::host

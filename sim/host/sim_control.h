@@ -1,6 +1,8 @@
 // The control socket's commands for the simulated inverter: read and write its registers as the panel
-// would, work its terminals, trip it, damage its serial replies, report its state. card_report.cc
-// passes every command it does not know itself here. docs/simulator.md "In ipe002z-host" lists them.
+// would, work its terminals, trip it, damage its serial replies, report its state. Both control sockets
+// that drive an inverter pass every command they do not know themselves here: the host card's
+// (firmware/host/card_report.cc) and ipe002z-inverter's (standalone_control.cc). docs/simulator.md
+// "Control commands" lists them.
 #pragma once
 
 #include <span>
@@ -9,7 +11,7 @@
 
 #include "sim_inverter.h"
 
-namespace host {
+namespace sim {
 
 // The lines `help` adds for these commands.
 extern const char kSimControlHelp[];
@@ -23,4 +25,4 @@ bool HandleSimCommand(std::span<const std::string_view> words, std::string& repl
 // source, priorities, FA06, FA07, FD01, trip code, EEPROM writes), without a newline.
 std::string InverterStatusJson(SimulatedInverter& inverter);
 
-}  // namespace host
+}  // namespace sim

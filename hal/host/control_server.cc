@@ -9,7 +9,20 @@
 #include <cerrno>
 #include <cstring>
 
-namespace host {
+namespace hal::host {
+
+std::size_t SplitCommand(std::string_view command, std::span<std::string_view> words) {
+  std::size_t count = 0;
+  while (!command.empty() && count < words.size()) {
+    const std::size_t start = command.find_first_not_of(' ');
+    if (start == std::string_view::npos) break;
+    command.remove_prefix(start);
+    const std::size_t end = command.find(' ');
+    words[count++] = command.substr(0, end);
+    command.remove_prefix(end == std::string_view::npos ? command.size() : end);
+  }
+  return command.find_first_not_of(' ') == std::string_view::npos ? count : words.size() + 1;
+}
 
 ControlServer::ControlServer(std::string path, Handler handler)
     : path_(std::move(path)), handler_(std::move(handler)) {}
@@ -46,7 +59,7 @@ bool ControlServer::Start(std::string& error) {
   return true;
 }
 
-void ControlServer::PrepareWait(hal::host::PollSet& set, hal::Micros& /*deadline*/) {
+void ControlServer::PrepareWait(PollSet& set, Micros& /*deadline*/) {
   if (listen_fd_ < 0) return;
   listen_slot_ = set.Add(listen_fd_, POLLIN);
   for (Client& client : clients_) {
@@ -54,7 +67,7 @@ void ControlServer::PrepareWait(hal::host::PollSet& set, hal::Micros& /*deadline
   }
 }
 
-void ControlServer::AfterWait(const hal::host::PollSet& set) {
+void ControlServer::AfterWait(const PollSet& set) {
   if (listen_fd_ < 0) return;
   // Clients accepted in this call have no poll slot yet; serve only those that were polled.
   const std::size_t polled = clients_.size();
@@ -129,4 +142,4 @@ void ControlServer::Close(Client& client) {
   client.fd = -1;
 }
 
-}  // namespace host
+}  // namespace hal::host

@@ -5,10 +5,8 @@
 #include <cstdio>
 #include <system_error>
 
-namespace host {
+namespace sim {
 namespace {
-
-using sim::RegisterInfo;
 
 bool IsHexNumber(std::string_view text, std::uint16_t& number) {
   if (text.size() != 4) return false;
@@ -24,15 +22,15 @@ std::string Hex4(std::uint16_t number) {
 
 }  // namespace
 
-const RegisterInfo* ResolveRegister(std::string_view name, sim::Model model, std::string& error) {
-  const RegisterInfo* info = sim::FindRegisterByTitle(name);
+const RegisterInfo* ResolveRegister(std::string_view name, Model model, std::string& error) {
+  const RegisterInfo* info = FindRegisterByTitle(name);
   std::uint16_t number = 0;
   if (info == nullptr && IsHexNumber(name, number)) {
-    if (!sim::CommunicationNumberMayExist(number)) {
+    if (!CommunicationNumberMayExist(number)) {
       error = "no communication number " + Hex4(number) + " (numbers ending in A-F do not exist)";
       return nullptr;
     }
-    info = sim::FindRegister(number);
+    info = FindRegister(number);
     if (info == nullptr) {
       error = "no communication number " + Hex4(number);
       return nullptr;
@@ -43,7 +41,7 @@ const RegisterInfo* ResolveRegister(std::string_view name, sim::Model model, std
     return nullptr;
   }
   if (!info->AppliesTo(model)) {
-    error = std::string(info->title) + " does not exist on " + sim::ModelName(model);
+    error = std::string(info->title) + " does not exist on " + ModelName(model);
     return nullptr;
   }
   return info;
@@ -75,9 +73,9 @@ std::string FormatRegisterValue(const RegisterInfo& info, std::uint16_t word) {
   return std::string(info.title) + " = " + std::to_string(info.FromWord(word)) + " (" + hex + ")";
 }
 
-std::string StaticRangeError(const RegisterInfo& info, sim::Model model, std::int32_t value) {
+std::string StaticRangeError(const RegisterInfo& info, Model model, std::int32_t value) {
   if (info.InRange(model, value)) return {};
   return "out of range " + std::to_string(info.min(model)) + ".." + std::to_string(info.max(model));
 }
 
-}  // namespace host
+}  // namespace sim
