@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Validates the simulated inverter's register table and generates its C++ form.
 
-The one table is hal/host/inverter_sim/registers.csv (one row per register of the VF-MB1/VF-S15,
+The one table is sim/registers.csv (one row per register of the VF-MB1/VF-S15,
 keyed by the 16-bit communication number). This script checks every row and writes a header with a
-constexpr array of hal::host::sim::RegisterInfo sorted by number, which register_table.cc includes.
+constexpr array of sim::RegisterInfo sorted by number, which register_table.cc includes.
 
     gen_register_table.py --csv registers.csv --out build/.../register_table.inc
     gen_register_table.py --csv registers.csv --check              # validate only
@@ -260,9 +260,9 @@ def generate(rows, csv_name):
         "// %d registers, sorted by communication number." % len(rows),
         "#pragma once",
         "",
-        '#include "inverter_sim/register_table.h"',
+        '#include "sim/register_table.h"',
         "",
-        "namespace hal::host::sim::generated {",
+        "namespace sim::generated {",
         "",
         "inline constexpr RegisterInfo kRegisters[] = {",
     ]
@@ -274,7 +274,7 @@ def generate(rows, csv_name):
                ACCESS[r.access], r.mb1[0], r.mb1[1], r.mb1[2], r.s15[0], r.s15[1], r.s15[2],
                unit, decimals, "true" if r.write_during_run else "false",
                "true" if r.effective_after_reset else "false", MODELS[r.models]))
-    out += ["};", "", "}  // namespace hal::host::sim::generated", ""]
+    out += ["};", "", "}  // namespace sim::generated", ""]
     return "\n".join(out)
 
 

@@ -5,6 +5,7 @@
 
 #include "lwip/memp.h"
 #include "lwip/priv/tcp_priv.h"
+#include "control_server.h"
 #include "lwip/stats.h"
 #include "sim_control.h"
 
@@ -96,21 +97,6 @@ bool ParsePort(std::string_view letter, hal::PortId& port) {
   return false;
 }
 
-// "link L down" -> words. More than kMaxWords words is no command of ours: the count says so.
-constexpr std::size_t kMaxWords = 4;
-std::size_t Split(std::string_view text, std::string_view (&words)[kMaxWords]) {
-  std::size_t count = 0;
-  while (!text.empty() && count < kMaxWords) {
-    const std::size_t start = text.find_first_not_of(' ');
-    if (start == std::string_view::npos) break;
-    text.remove_prefix(start);
-    const std::size_t end = text.find(' ');
-    words[count++] = text.substr(0, end);
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end);
-  }
-  return text.find_first_not_of(' ') == std::string_view::npos ? count : kMaxWords + 1;
-}
-
 constexpr char kHelp[] =
     "help                   this list\n"
     "stats                  counters: event loop, netif, ports, lwIP protocols and pools, the card's pools\n"
@@ -163,14 +149,18 @@ void AppendStats(const CardReport& report, std::string& out) {
 }
 
 void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
-                          const SetPlugged& set_plugged, hal::ResetControl& reset, SimulatedInverter& inverter) {
-  std::string_view words[kMaxWords];
-  const std::size_t count = Split(command, words);
+                          const SetPlugged& set_plugged, hal::ResetControl& reset,
+                          sim::SimulatedInverter& inverter) {
+  // "link L down" -> words. More than kMaxCommandWords words is no command of ours: the count says so.
+  std::string_view words[hal::host::kMaxCommandWords];
+  const std::size_t count = hal::host::SplitCommand(command, words);
   const std::string_view verb = count > 0 ? words[0] : std::string_view();
-  if (count <= kMaxWords && HandleSimCommand(std::span(words, count), reply, inverter)) return;
+  if (count <= hal::host::kMaxCommandWords && sim::HandleSimCommand(std::span(words, count), reply, inverter)) {
+    return;
+  }
   if (verb == "help" && count == 1) {
     reply += kHelp;
-    reply += kSimControlHelp;
+    reply += sim::kSimControlHelp;
   } else if (verb == "stats" && count == 1) {
     AppendStats(report, reply);
     if (report.drive != nullptr) AppendDriveStats(*report.drive, reply);

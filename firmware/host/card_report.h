@@ -47,6 +47,7 @@ void AppendStats(const CardReport& report, std::string& out);
 // The inverter's commands (get, set, terminal, trip, inject, status) go to HandleSimCommand;
 // power-cycle power-cycles the inverter, stores its image and requests a restart of the card.
 void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
-                          const SetPlugged& set_plugged, hal::ResetControl& reset, SimulatedInverter& inverter);
+                          const SetPlugged& set_plugged, hal::ResetControl& reset,
+                          sim::SimulatedInverter& inverter);
 
 }  // namespace host

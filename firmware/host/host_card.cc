@@ -1,18 +1,17 @@
 #include "host_card.h"
 
-#include <array>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string_view>
 
+#include "address_plan.h"
 #include "capturing_frame_port.h"
 #include "card.h"
 #include "card_lines.h"
 #include "card_records.h"
 #include "card_report.h"
 #include "control_server.h"
-#include "drive_link/drive_registers.h"
 #include "file_nv_store.h"
 #include "host_clock.h"
 #include "host_random.h"
@@ -30,28 +29,16 @@
 namespace host {
 namespace {
 
-// --ip: the address plan keyed into the inverter before power-up, at every start: c504 = 0 (manual) and
-// c505-c516 (one octet per parameter; communication numbers C505-C509, C510-C516).
-bool ForceManualAddress(const HostOptions& options, SimulatedInverter& inverter, std::string& error) {
-  std::array<std::uint16_t, 13> values{0};
-  for (unsigned i = 0; i < 4; ++i) {
-    const unsigned shift = 24 - 8 * i;
-    values[1 + i] = static_cast<std::uint16_t>((options.ip >> shift) & 0xFF);
-    values[5 + i] = static_cast<std::uint16_t>((options.netmask >> shift) & 0xFF);
-    values[9 + i] = static_cast<std::uint16_t>((options.gateway >> shift) & 0xFF);
-  }
-  for (unsigned i = 0; i < values.size(); ++i) {
-    const hal::host::sim::WriteResult result =
-        inverter.model().Write(drive_link::reg::CParameter(504 + i), values[i], hal::host::sim::WriteTarget::kRamAndEeprom);
-    if (!result.ok()) {
-      error = "--ip: the inverter refused c" + std::to_string(504 + i) + " (" +
-              hal::host::sim::WriteOutcomeName(result.outcome) + ")";
-      return false;
-    }
-  }
-  inverter.SaveIfChanged();
-  return true;
-}
+// The simulated inverter's EEPROM store check, polled by the card's loop like the card's own services.
+class InverterStoreCheck final : public firmware::Service {
+ public:
+  explicit InverterStoreCheck(sim::SimulatedInverter& inverter) : inverter_(inverter) {}
+  void Poll(hal::Micros now) override { inverter_.Poll(now); }
+  hal::Micros NextDeadline() const override { return inverter_.NextDeadline(); }
+
+ private:
+  sim::SimulatedInverter& inverter_;
+};
 
 // The network port as built from --net, with what the control socket and the ready line need.
 struct NetworkPort {
@@ -126,15 +113,20 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   // the loop; whoever holds this end must read them, or poll() would report them forever.
   std::unique_ptr<hal::host::SocketSerialPort> card_serial = std::move(line.value().card);
 
-  SimInverterConfig inverter_config;
+  sim::SimInverterConfig inverter_config;
   inverter_config.model = options.model;
   inverter_config.directory = options.state_dir + "/inverter";
   inverter_config.presets = options.params;
-  inverter_config.server = ServerConfigFromOptions(options);
-  std::unique_ptr<SimulatedInverter> inverter =
-      SimulatedInverter::Create(inverter_config, *inverter_serial, clock, stderr, error);
+  inverter_config.server = sim::ServerConfigFromOptions(options);
+  inverter_config.program = "ipe002z-host";
+  std::unique_ptr<sim::SimulatedInverter> inverter =
+      sim::SimulatedInverter::Create(inverter_config, *inverter_serial, clock, stderr, error);
   if (!inverter) return CardExit::kFailed;
-  if (options.ip_given && !ForceManualAddress(options, *inverter, error)) return CardExit::kFailed;
+  // --ip: the address plan keyed into the inverter before power-up, at every start.
+  if (options.ip_given &&
+      !sim::KeyManualAddress(*inverter, {options.ip, options.netmask, options.gateway}, error)) {
+    return CardExit::kFailed;
+  }
   waiter.Register(*inverter_serial);         // request bytes wake the inverter
   waiter.Register(inverter->poll_source());  // its reply and receive timers
   waiter.Register(*card_serial);             // reply bytes wake the card
@@ -171,7 +163,8 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
                             .fatal = console,
                             .watchdog = nullptr},
       firmware::CardOptions{.keepalive = options.tcp_keepalive});
-  card->AddService(*inverter).IgnoreError();  // stores the inverter's EEPROM image when due
+  InverterStoreCheck store_check(*inverter);
+  card->AddService(store_check).IgnoreError();  // stores the inverter's EEPROM image when due
   if (base::Status started = card->Start(); !started.ok()) {
     error = std::string(card->failed_part()) + ": " + base::StatusName(started);
     return CardExit::kFailed;
@@ -180,7 +173,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
     std::fprintf(stderr, "web: cannot store the default passwords; they are in force anyway\n");
   }
 
-  SignalSource signals;
+  hal::host::SignalSource signals;
   waiter.Register(signals);
 
   const DriveReport drive_report{card->proxy(), card->modbus_server(), card->modbus_service(), card->eip(),
@@ -190,9 +183,9 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
                                card->proxy(),          card->parameter_writer(), card->web_service(),
                                card->http_server(),    card->access(),         clock};
   CardReport report{card->netif(), card->loop(), logged_leds, waiter, &drive_report, &network_report, &pool_report};
-  std::unique_ptr<ControlServer> control;
+  std::unique_ptr<hal::host::ControlServer> control;
   if (!options.sim_control_path.empty()) {
-    control = std::make_unique<ControlServer>(
+    control = std::make_unique<hal::host::ControlServer>(
         options.sim_control_path, [&](std::string_view command, std::string& reply) {
           HandleControlCommand(command, reply, report, network.set_plugged, card->reset_control(), *inverter);
         });

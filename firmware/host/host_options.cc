@@ -1,12 +1,8 @@
 #include "host_options.h"
 
 #include <cctype>
-#include <cstdio>
-#include <cstring>
-#include <optional>
+#include <string>
 #include <string_view>
-
-#include "register_names.h"
 
 namespace host {
 namespace {
@@ -33,63 +29,6 @@ bool ParseNet(std::string_view text, HostOptions& options) {
     if (text.empty()) return false;
   }
   return !options.tap_interfaces.empty() && options.tap_interfaces.size() <= 2;
-}
-
-bool ParseCidr(const std::string& text, HostOptions& options) {
-  const std::size_t slash = text.find('/');
-  if (slash == std::string::npos) return false;
-  const std::string prefix_text = text.substr(slash + 1);
-  if (prefix_text.empty() || prefix_text.size() > 2) return false;
-  for (char c : prefix_text) {
-    if (std::isdigit(static_cast<unsigned char>(c)) == 0) return false;
-  }
-  const int prefix = std::stoi(prefix_text);
-  if (prefix < 1 || prefix > 30) return false;
-  if (!ParseIpv4(text.substr(0, slash), options.ip)) return false;
-  options.netmask = ~std::uint32_t{0} << (32 - prefix);
-  return true;
-}
-
-// NAME=VALUE with NAME a panel title or a communication number (letters and digits, at most 8) and
-// VALUE a decimal or 0x-hex integer; what they mean is checked once the model is known (CheckParam).
-bool ParseParam(const std::string& text, HostOptions& options) {
-  const std::size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0 || eq > 8) return false;
-  for (std::size_t i = 0; i < eq; ++i) {
-    if (std::isalnum(static_cast<unsigned char>(text[i])) == 0) return false;
-  }
-  ParamPreset preset;
-  preset.text = text;
-  if (!ParseRegisterValue(std::string_view(text).substr(eq + 1), preset.value)) return false;
-  options.params.push_back(preset);
-  return true;
-}
-
-// A preset goes into the EEPROM of a new inverter, so it must name an EEPROM parameter hosts may write
-// and lie within its static limits. Run-time limits (ul <= fh...) are the model's, when it is applied.
-bool CheckParam(ParamPreset& preset, hal::host::sim::Model model, std::string& reason) {
-  const std::string name = preset.text.substr(0, preset.text.find('='));
-  const hal::host::sim::RegisterInfo* info = ResolveRegister(name, model, reason);
-  if (info == nullptr) return false;
-  if (info->storage != hal::host::sim::StorageClass::kEeprom || !info->HostWritable()) {
-    reason = std::string(info->title) + " is not a parameter hosts keep in the EEPROM (" +
-             hal::host::sim::StorageClassName(info->storage) +
-             (info->HostWritable() ? "" : ", not host-writable") + ")";
-    return false;
-  }
-  reason = StaticRangeError(*info, model, preset.value);
-  if (!reason.empty()) return false;
-  preset.number = info->number;
-  return true;
-}
-
-bool ParseMilliseconds(const std::string& text, int& out) {
-  if (text.empty() || text.size() > 4) return false;
-  for (char c : text) {
-    if (std::isdigit(static_cast<unsigned char>(c)) == 0) return false;
-  }
-  out = std::stoi(text);
-  return out <= 2000;
 }
 
 // An unsigned decimal of at most `digits` digits within [low, high].
@@ -126,51 +65,28 @@ bool ParseKeepalive(std::string_view text, firmware::TcpKeepalive& out) {
 
 }  // namespace
 
-bool ParseIpv4(const std::string& text, std::uint32_t& out) {
-  unsigned a = 0, b = 0, c = 0, d = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%3u.%3u.%3u.%3u%c", &a, &b, &c, &d, &tail) != 4) return false;
-  if (a > 255 || b > 255 || c > 255 || d > 255) return false;
-  for (char ch : text) {
-    if (std::isdigit(static_cast<unsigned char>(ch)) == 0 && ch != '.') return false;
-  }
-  out = (a << 24) | (b << 16) | (c << 8) | d;
-  return true;
-}
-
-std::string FormatIpv4(std::uint32_t v) {
-  char text[16];
-  std::snprintf(text, sizeof text, "%u.%u.%u.%u", (v >> 24) & 0xFFu, (v >> 16) & 0xFFu,
-                (v >> 8) & 0xFFu, v & 0xFFu);
-  return text;
-}
-
 const char* HostUsage() {
-  return "usage: ipe002z-host [options]\n"
-         "  --net loopback | tap:IF[,tap:IF2]  network port (default loopback: libslirp, no root)\n"
-         "  --ip A.B.C.D/N                     card address: sets c504 = 0 (manual) and c505-c516 in the\n"
-         "                                     inverter at every start (loopback: always, default\n"
-         "                                     10.0.2.15/24); without it (tap) c504-c516 decide: manual,\n"
-         "                                     BOOTP or DHCP\n"
-         "  --gateway A.B.C.D                  default gateway with --ip (loopback default 10.0.2.2)\n"
-         "  --host-addr A.B.C.D                loopback address the forwards bind (default 127.0.0.2)\n"
-         "  --state-dir DIR                    persistent state (default: a fresh temporary dir)\n"
-         "  --pcap FILE                        capture every frame in and out\n"
-         "  --sim-control PATH                 UNIX control socket (line protocol; 'help' lists it)\n"
-         "  --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT\n"
-         "                                     TCP keepalive of the card's connections (for tests): first\n"
-         "                                     probe after IDLE_MS idle, then every INTERVAL_MS, dropped\n"
-         "                                     after COUNT unanswered (IDLE_MS and INTERVAL_MS 100-7200000,\n"
-         "                                     COUNT 1-20; default 60000,10000,6)\n"
-         "simulated inverter (its EEPROM is kept in DIR/inverter/MODEL.eeprom):\n"
-         "  --model vf-mb1|vf-s15              inverter model (default vf-mb1); each model has its own file\n"
-         "  --param NAME|COMMNO=VALUE          preset a parameter (acc=50, 0009=50, c500=1; value in the\n"
-         "                                     register's unit step); repeatable; presets for a new inverter:\n"
-         "                                     applied only while DIR has no usable file for the model\n"
-         "  --rs485-profile                    19200 baud 8E1 with the manual's 20 ms processing time\n"
-         "  --sim-processing-ms N              the inverter's processing time, 0-2000 ms (default 2,\n"
-         "                                     20 with --rs485-profile)\n"
-         "  --help                             this text\n";
+  static const std::string usage =
+      std::string(
+          "usage: ipe002z-host [options]\n"
+          "  --net loopback | tap:IF[,tap:IF2]  network port (default loopback: libslirp, no root)\n"
+          "  --ip A.B.C.D/N                     card address: sets c504 = 0 (manual) and c505-c516 in the\n"
+          "                                     inverter at every start (loopback: always, default\n"
+          "                                     10.0.2.15/24); without it (tap) c504-c516 decide: manual,\n"
+          "                                     BOOTP or DHCP\n"
+          "  --gateway A.B.C.D                  default gateway with --ip (loopback default 10.0.2.2)\n"
+          "  --host-addr A.B.C.D                loopback address the forwards bind (default 127.0.0.2)\n"
+          "  --state-dir DIR                    persistent state (default: a fresh temporary dir)\n"
+          "  --pcap FILE                        capture every frame in and out\n"
+          "  --sim-control PATH                 UNIX control socket (line protocol; 'help' lists it)\n"
+          "  --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT\n"
+          "                                     TCP keepalive of the card's connections (for tests): first\n"
+          "                                     probe after IDLE_MS idle, then every INTERVAL_MS, dropped\n"
+          "                                     after COUNT unanswered (IDLE_MS and INTERVAL_MS 100-7200000,\n"
+          "                                     COUNT 1-20; default 60000,10000,6)\n"
+          "simulated inverter (its EEPROM is kept in DIR/inverter/MODEL.eeprom):\n") +
+      sim::kInverterOptionsUsage + "  --help                             this text\n";
+  return usage.c_str();
 }
 
 ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& options,
@@ -179,10 +95,7 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--help" || flag == "-h") return ParseOutcome::kHelp;
-    if (flag == "--rs485-profile") {
-      options.rs485_profile = true;
-      continue;
-    }
+    if (sim::TakeInverterSwitch(flag, options)) continue;
     if (i + 1 >= argc) {
       error = flag.rfind("--", 0) == 0 ? "missing value for " + flag : "unexpected argument " + flag;
       return ParseOutcome::kError;
@@ -192,7 +105,7 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
     if (flag == "--net") {
       ok = ParseNet(value, options);
     } else if (flag == "--ip") {
-      ok = ParseCidr(value, options);
+      ok = sim::ParseCidr(value, options.ip, options.netmask);
       options.ip_given = ok;
     } else if (flag == "--gateway") {
       ok = ParseIpv4(value, options.gateway);
@@ -203,20 +116,15 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
       options.host_address = value;
     } else if (flag == "--state-dir") {
       options.state_dir = value;
-    } else if (flag == "--param") {
-      ok = ParseParam(value, options);
-    } else if (flag == "--model") {
-      const std::optional<hal::host::sim::Model> model = hal::host::sim::ModelFromName(value);
-      ok = model.has_value();
-      if (ok) options.model = *model;
-    } else if (flag == "--sim-processing-ms") {
-      ok = ParseMilliseconds(value, options.sim_processing_ms);
     } else if (flag == "--tcp-keepalive") {
       ok = ParseKeepalive(value, options.tcp_keepalive);
     } else if (flag == "--pcap") {
       options.pcap_path = value;
     } else if (flag == "--sim-control") {
       options.sim_control_path = value;
+    } else if (const sim::FlagOutcome taken = sim::TakeInverterFlag(flag, value, options);
+               taken != sim::FlagOutcome::kNotOurs) {
+      ok = taken == sim::FlagOutcome::kTaken;
     } else {
       error = "unknown option " + flag;
       return ParseOutcome::kError;
@@ -232,13 +140,7 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
     options.ip_given = true;
   }
   if (options.net == NetKind::kLoopback && !gateway_given) options.gateway = kLoopbackGateway;
-  for (ParamPreset& preset : options.params) {
-    std::string reason;
-    if (!CheckParam(preset, options.model, reason)) {
-      error = "invalid value for --param: '" + preset.text + "' (" + reason + ")";
-      return ParseOutcome::kError;
-    }
-  }
+  if (!sim::CheckPresets(options, error)) return ParseOutcome::kError;
   return ParseOutcome::kRun;
 }
 

@@ -5,22 +5,17 @@
 #include <string>
 #include <vector>
 
-#include "inverter_sim/register_table.h"
+#include "address_plan.h"
+#include "inverter_options.h"
 #include "tcp_keepalive.h"
 
 namespace host {
 
 enum class NetKind { kLoopback, kTap };
 
-// --param NAME|COMMNO=VALUE: a parameter preset for the simulated inverter, checked against the
-// register table of the chosen model (an EEPROM parameter hosts may write, within its static limits).
-struct ParamPreset {
-  std::string text;          // as given ("acc=50"), for messages
-  std::uint16_t number = 0;  // communication number
-  std::int32_t value = 0;    // in the register's unit step
-};
-
-struct HostOptions {
+// The simulated inverter's flags (--model, --param, --rs485-profile, --sim-processing-ms) are the
+// base's: ipe002z-inverter takes the same ones (sim/host/inverter_options.h).
+struct HostOptions : sim::InverterOptions {
   NetKind net = NetKind::kLoopback;
   std::vector<std::string> tap_interfaces;  // --net tap:IF1[,tap:IF2]: port L, then port R
   std::uint32_t ip = 0;                     // host byte order
@@ -31,11 +26,6 @@ struct HostOptions {
   std::string state_dir;                    // empty: a fresh temporary directory
   std::string pcap_path;
   std::string sim_control_path;
-  // The simulated inverter.
-  hal::host::sim::Model model = hal::host::sim::Model::kVfMb1;
-  std::vector<ParamPreset> params;  // in order; applied only to a new inverter (no EEPROM file yet)
-  bool rs485_profile = false;       // 19200 baud 8E1, 20 ms processing (hal::host::sim::Rs485Profile())
-  int sim_processing_ms = -1;       // the inverter's processing delay; -1: the profile's (2 ms or 20 ms)
   // --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT: keepalive timing of the card's TCP connections (tests
   // shorten it to see a vanished peer dropped); default lwipopts.h's 60 s, 10 s, 6.
   firmware::TcpKeepalive tcp_keepalive;
@@ -48,8 +38,9 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
                               std::string& error);
 const char* HostUsage();
 
-// "10.0.2.15" -> host byte order; false when not a dotted quad.
-bool ParseIpv4(const std::string& text, std::uint32_t& out);
-std::string FormatIpv4(std::uint32_t host_order);
+// "10.0.2.15" -> host byte order; false when not a dotted quad. Shared with the simulated inverter's
+// --ip (sim/host/address_plan.h).
+using sim::FormatIpv4;
+using sim::ParseIpv4;
 
 }  // namespace host

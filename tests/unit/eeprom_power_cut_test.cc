@@ -9,12 +9,11 @@
 #include <string>
 
 #include "host_sim_fixture.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/register_numbers.h"
 
 namespace host::test {
 namespace {
 
-namespace sim = hal::host::sim;
 namespace reg = sim::reg;
 using hal::host::PowerCut;
 

@@ -7,13 +7,13 @@
 #include "card_report.h"
 #include "fake_frame_port.h"
 #include "host_sim_fixture.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/register_numbers.h"
 #include "lwip_fixture.h"
 
 namespace host::test {
 namespace {
 
-namespace reg = hal::host::sim::reg;
+namespace reg = sim::reg;
 
 class RecordingReset final : public hal::ResetControl {
  public:

@@ -23,7 +23,7 @@ TEST(HostOptions, NoArguments_LoopbackWithSlirpDefaults) {
   EXPECT_EQ(o.netmask, 0xFFFFFF00u);
   EXPECT_EQ(o.gateway, 0x0A000202u);
   EXPECT_EQ(o.host_address, "127.0.0.2");
-  EXPECT_EQ(o.model, hal::host::sim::Model::kVfMb1);
+  EXPECT_EQ(o.model, sim::Model::kVfMb1);
   EXPECT_TRUE(o.params.empty());
   EXPECT_FALSE(o.rs485_profile);
   EXPECT_EQ(o.sim_processing_ms, -1);
@@ -53,7 +53,7 @@ TEST(HostOptions, TwoTapPortsAndAddress_Parsed) {
   EXPECT_EQ(o.params[1].text, "f856=0x2");
   EXPECT_EQ(o.params[1].number, 0x0856);
   EXPECT_EQ(o.params[1].value, 2);
-  EXPECT_EQ(o.model, hal::host::sim::Model::kVfS15);
+  EXPECT_EQ(o.model, sim::Model::kVfS15);
 }
 
 TEST(HostOptions, ParamByTitleOrCommunicationNumber_InOrder) {

@@ -1,4 +1,4 @@
-// The control socket's inverter commands (firmware/host/sim_control.h): exact answers for get, set,
+// The control socket's inverter commands (sim/host/sim_control.h): exact answers for get, set,
 // terminal, trip, inject and status, and their refusals.
 #include "sim_control.h"
 
@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "host_sim_fixture.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/register_numbers.h"
 
 namespace host::test {
 namespace {
 
-namespace sim = hal::host::sim;
 namespace reg = sim::reg;
+using sim::HandleSimCommand;
 
 class SimControl : public SimInverterFixture {
  protected:

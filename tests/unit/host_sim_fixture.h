@@ -19,6 +19,13 @@
 
 namespace host::test {
 
+// The host card runs the simulator of sim/host/ (namespace sim).
+using sim::EepromFileContents;
+using sim::EepromImageOf;
+using sim::ParamPreset;
+using sim::SimInverterConfig;
+using sim::SimulatedInverter;
+
 inline constexpr hal::Micros kSecond = hal::kMicrosPerSecond;
 
 class SimInverterFixture : public ::testing::Test {
@@ -32,6 +39,7 @@ class SimInverterFixture : public ::testing::Test {
     line_ = std::move(pair.value().inverter);
     log_ = open_memstream(&log_buffer_, &log_size_);
     config_.directory = dir_ + "/inverter";
+    config_.program = "ipe002z-host";
   }
   ~SimInverterFixture() override {
     inverter_.reset();
@@ -57,7 +65,7 @@ class SimInverterFixture : public ::testing::Test {
     return std::string(log_buffer_, log_size_);
   }
   std::string FilePath() const {
-    return config_.directory + "/" + hal::host::sim::ModelName(config_.model) + ".eeprom";
+    return config_.directory + "/" + sim::ModelName(config_.model) + ".eeprom";
   }
   std::string ReadText(const std::string& path) const {
     std::ifstream in(path);

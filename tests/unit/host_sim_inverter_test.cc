@@ -4,14 +4,15 @@
 
 #include <filesystem>
 
+#include "host_options.h"
 #include "host_sim_fixture.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/register_numbers.h"
 
 namespace host::test {
 namespace {
 
-namespace sim = hal::host::sim;
 namespace reg = sim::reg;
+using sim::ServerConfigFromOptions;
 
 ParamPreset Preset(const char* text, std::uint16_t number, std::int32_t value) { return {text, number, value}; }
 

@@ -6,7 +6,7 @@
 
 #include "inverter_model_fixture.h"
 
-namespace hal::host::sim::test {
+namespace sim::test {
 namespace {
 
 using InverterDrive = InverterModelFixture;
@@ -428,4 +428,4 @@ TEST_F(InverterDrive, LossPresetSpeed) {
 }
 
 }  // namespace
-}  // namespace hal::host::sim::test
+}  // namespace sim::test

@@ -8,10 +8,10 @@
 #include <cstdint>
 
 #include "hal/clock.h"
-#include "inverter_sim/inverter_model.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/inverter_model.h"
+#include "sim/register_numbers.h"
 
-namespace hal::host::sim::test {
+namespace sim::test {
 
 inline constexpr hal::Micros kSecond = hal::kMicrosPerSecond;
 inline constexpr hal::Micros kMilli = hal::kMicrosPerMilli;
@@ -54,4 +54,4 @@ class InverterModelFixture : public ::testing::Test {
   InverterModel m_;
 };
 
-}  // namespace hal::host::sim::test
+}  // namespace sim::test

@@ -7,7 +7,7 @@
 
 #include "inverter_model_fixture.h"
 
-namespace hal::host::sim::test {
+namespace sim::test {
 namespace {
 
 using InverterModelTest = InverterModelFixture;
@@ -322,4 +322,4 @@ TEST_F(InverterModelTest, DeterministicForTheSameCalls) {
 }
 
 }  // namespace
-}  // namespace hal::host::sim::test
+}  // namespace sim::test

@@ -6,7 +6,7 @@
 
 #include "inverter_model_fixture.h"
 
-namespace hal::host::sim::test {
+namespace sim::test {
 namespace {
 
 class InverterOptionFault : public InverterModelFixture {};
@@ -73,4 +73,4 @@ TEST_F(InverterOptionFault, FirstTripHolds) {
 }
 
 }  // namespace
-}  // namespace hal::host::sim::test
+}  // namespace sim::test

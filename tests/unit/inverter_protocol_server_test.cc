@@ -1,7 +1,7 @@
-// The simulated inverter's protocol server (hal/host/inverter_sim/protocol_server.h): bytes written on the
+// The simulated inverter's protocol server (sim/include/sim/protocol_server.h): bytes written on the
 // card's end of a socket pair, answered through the behaviour model, read back as exact bytes. Expected
 // frames are the manual's worked examples (seed 003 §3, §4) wherever one exists.
-#include "inverter_sim/protocol_server.h"
+#include "sim/protocol_server.h"
 
 #include <gtest/gtest.h>
 
@@ -12,14 +12,18 @@
 
 #include "drive_link/wire/toshiba_frame.h"
 #include "fake_clock.h"
-#include "inverter_sim/inverter_model.h"
-#include "inverter_sim/register_numbers.h"
+#include "sim/inverter_model.h"
+#include "sim/register_numbers.h"
 #include "socket_serial_port.h"
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 namespace wire = drive_link::wire;
+using hal::kNever;
+using hal::Micros;
+using hal::host::PollSet;
+using hal::host::SocketSerialPort;
 using Bytes = std::vector<std::uint8_t>;
 
 constexpr hal::Micros kSecond = hal::kMicrosPerSecond;
@@ -416,4 +420,4 @@ TEST_F(InverterProtocolServerTest, PollSourceLowersTheDeadlineAndPolls) {
 }
 
 }  // namespace
-}  // namespace hal::host::sim
+}  // namespace sim

@@ -1,4 +1,4 @@
-#include "inverter_sim/register_table.h"
+#include "sim/register_table.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace hal::host::sim {
+namespace sim {
 namespace {
 
 // Looks `number` up and fails the test (returning a harmless row) when it is missing.
@@ -292,4 +292,4 @@ TEST(InverterRegisterTable, ModelNames) {
 }
 
 }  // namespace
-}  // namespace hal::host::sim
+}  // namespace sim

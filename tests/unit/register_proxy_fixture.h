@@ -19,13 +19,12 @@
 
 #include "drive_link/register_proxy.h"
 #include "fake_clock.h"
-#include "inverter_sim/inverter_model.h"
-#include "inverter_sim/protocol_server.h"
+#include "sim/inverter_model.h"
+#include "sim/protocol_server.h"
 #include "socket_serial_port.h"
 
 namespace drive_link::test {
 
-namespace sim = hal::host::sim;
 using hal::Micros;
 
 inline constexpr Micros kMilli = hal::kMicrosPerMilli;

@@ -18,13 +18,12 @@
 
 #include "drive_link/register_proxy.h"
 #include "hal/clock.h"
-#include "inverter_sim/inverter_model.h"
-#include "inverter_sim/protocol_server.h"
+#include "sim/inverter_model.h"
+#include "sim/protocol_server.h"
 #include "socket_serial_port.h"
 
 namespace {
 
-namespace sim = hal::host::sim;
 using hal::Micros;
 
 constexpr Micros kMilli = hal::kMicrosPerMilli;
