@@ -99,6 +99,7 @@ class CardNetif final : private ArpCacheQuery {
   const ArpGuardCounters& arp_guard_counters() const { return arp_guard_.counters(); }
   netif& lwip_netif() { return netif_; }
   hal::FramePort& port() { return port_; }
+  const hal::FramePort& port() const { return port_; }
 
  private:
   static err_t InitCallback(netif* nif);

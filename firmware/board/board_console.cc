@@ -1,6 +1,6 @@
 #include "board_console.h"
 
-#include "drive_link/link_client.h"
+#include "card_lines.h"
 #include "hal/text_line.h"
 #include "startup.h"
 
@@ -9,7 +9,10 @@ namespace {
 
 constexpr std::string_view kHelp =
     "help           this list\n"
-    "stats          counters: stack, event loop, waiter, console, netif, port, drive link\n"
+    "stats          counters: stack, event loop, waiter, console, then the card's (as on the host)\n"
+    "config         the configuration read from the inverter and its problems\n"
+    "address        IP mode, phase, address in use, ACD duplicate flag, attribute 11 (hex)\n"
+    "led-inputs     what the MS/NS model is given now\n"
     "leds           what the LEDs show\n"
     "reset          restart the card (queued replies and parameter writes first)\n"
     "watchdog-test  stop the event loop: the watchdog must reset the card\n";
@@ -22,9 +25,43 @@ std::string_view Trim(std::string_view text) {
 
 }  // namespace
 
-void BoardConsole::Poll(hal::Micros) {
-  std::array<std::uint8_t, 32> bytes;
-  for (;;) {
+// Writes the lines after the first `skip` while the console takes them whole; counts what it wrote.
+class BoardConsole::PageSink final : public ReportSink {
+ public:
+  PageSink(const hal::mps2::UartConsole& console, hal::ConsoleOutput& output, std::size_t skip)
+      : console_(console), output_(output), skip_(skip) {}
+  void Line(std::string_view line) override {
+    if (seen_++ < skip_ || full_) return;
+    if (!console_.Fits(line)) {
+      full_ = true;
+      return;
+    }
+    output_.Write(line);
+    output_.Write("\n");
+    ++written_;
+  }
+  bool full() const { return full_; }
+  std::size_t written() const { return written_; }
+
+ private:
+  const hal::mps2::UartConsole& console_;
+  hal::ConsoleOutput& output_;
+  std::size_t skip_;
+  std::size_t seen_ = 0;
+  std::size_t written_ = 0;
+  bool full_ = false;
+};
+
+void BoardConsole::Poll(hal::Micros now) {
+  last_poll_ = now;
+  if (answer_ != Answer::kNone) {
+    ContinueAnswer();
+    if (answer_ != Answer::kNone) return;  // input waits for the answer
+  }
+  // One byte at a time: a command that starts a long answer leaves what follows it unread until the
+  // answer is out.
+  std::array<std::uint8_t, 1> bytes;
+  while (answer_ == Answer::kNone) {
     const base::Result<std::size_t> read = devices_.input.Read(bytes);
     if (read.status().code() == base::StatusCode::kUnavailable) return;
     if (!read.ok()) {
@@ -55,18 +92,50 @@ void BoardConsole::Poll(hal::Micros) {
 
 void BoardConsole::Print(std::string_view text) { devices_.output.Write(text); }
 
-void BoardConsole::Value(std::string_view name, std::uint64_t value) {
-  hal::TextLine line;
-  line.Text(name).Text("=").Unsigned(value).Text("\n");
-  Print(line.view());
+void BoardConsole::ContinueAnswer() {
+  PageSink page(devices_.console, devices_.output, lines_sent_);
+  Report(page);
+  lines_sent_ += page.written();
+  if (page.full() || !devices_.console.Fits("ok")) return;
+  answer_ = Answer::kNone;
+  Print("ok\n");
+}
+
+void BoardConsole::Report(ReportSink& sink) {
+  if (answer_ == Answer::kConfig) {
+    ReportCardConfig(devices_.card, sink);
+    return;
+  }
+  const hal::mps2::StackUsage stack = hal::mps2::MainStackUsage();
+  sink.Value({"stack.size"}, stack.size);
+  sink.Value({"stack.high_water"}, stack.high_water);
+  ReportLoopStats(devices_.card.loop(), sink);
+  sink.Value({"waiter.sleeps"}, devices_.waiter.counters().sleeps);
+  sink.Value({"waiter.woken_early"}, devices_.waiter.counters().woken_early);
+  sink.Value({"console.dropped"}, devices_.console.dropped());
+  ReportNetifStats(devices_.card.netif(), sink);
+  ReportCardStats(devices_.card, sink);
 }
 
 void BoardConsole::Execute(std::string_view command) {
   if (command.empty()) return;
   if (command == "help") {
     Print(kHelp);
-  } else if (command == "stats") {
-    Stats();
+  } else if (command == "stats" || command == "config") {
+    answer_ = command == "stats" ? Answer::kStats : Answer::kConfig;
+    lines_sent_ = 0;
+    ContinueAnswer();
+    return;  // "ok" comes with the last page
+  } else if (command == "address") {
+    hal::TextLine line;
+    DescribeAddress(devices_.card.addressing(), line);
+    line.Text("\n");
+    Print(line.view());
+  } else if (command == "led-inputs") {
+    hal::TextLine line;
+    DescribeLedInputs(devices_.card, line);
+    line.Text("\n");
+    Print(line.view());
   } else if (command == "leds") {
     hal::TextLine line;
     hal::DescribeLeds(devices_.leds.colors(), line);
@@ -82,38 +151,6 @@ void BoardConsole::Execute(std::string_view command) {
     return;
   }
   Print("ok\n");
-}
-
-void BoardConsole::Stats() {
-  const hal::mps2::StackUsage stack = hal::mps2::MainStackUsage();
-  Value("stack.size", stack.size);
-  Value("stack.high_water", stack.high_water);
-  const LoopStats& loop = devices_.card.loop().stats();
-  Value("loop.passes", loop.passes);
-  Value("loop.frames_in", loop.frames_in);
-  Value("loop.bounded_passes", loop.bounded_passes);
-  Value("loop.link_changes", loop.link_changes);
-  Value("waiter.sleeps", devices_.waiter.counters().sleeps);
-  Value("waiter.woken_early", devices_.waiter.counters().woken_early);
-  Value("console.dropped", devices_.console.dropped());
-  const CardNetif& netif = devices_.card.netif();
-  Print(netif.link_up() ? "netif.link=up\n" : "netif.link=down\n");
-  const NetifCounters& n = netif.counters();
-  Value("netif.rx_frames", n.rx_frames);
-  Value("netif.rx_dropped_no_pbuf", n.rx_dropped_no_pbuf);
-  Value("netif.rx_port_errors", n.rx_port_errors);
-  Value("netif.tx_frames", n.tx_frames);
-  Value("netif.tx_dropped", n.tx_dropped);
-  const hal::PortCounters c = devices_.card.netif().port().Counters(hal::PortId::kLeft);
-  Value("port.L.rx_frames", c.rx_frames);
-  Value("port.L.rx_octets", c.rx_octets);
-  Value("port.L.rx_errors", c.rx_errors);
-  Value("port.L.tx_frames", c.tx_frames);
-  Value("port.L.tx_octets", c.tx_octets);
-  Value("port.L.tx_errors", c.tx_errors);
-  hal::TextLine drive;
-  drive.Text("drive.link=").Text(drive_link::LinkStateName(devices_.card.proxy().link().state())).Text("\n");
-  Print(drive.view());
 }
 
 }  // namespace firmware::board

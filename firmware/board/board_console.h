@@ -3,7 +3,11 @@
 //
 //   help           the commands
 //   stats          stack.size, stack.high_water (from the stack painted at reset), the event loop, the
-//                  waiter, the console, the netif and the port's counters, the drive link's state
+//                  waiter, the console, then the card's report (firmware/card/card_report.h: netif,
+//                  ports, lwIP, drive link, front ends, addressing, pools), named as on the host
+//   config         the configuration read from the inverter (as the host's `config`)
+//   address        the address line (as the host's `address`)
+//   led-inputs     what the MS/NS model is given now
 //   leds           LNK-L=... LNK-R=... MS=... NS=... (what the LEDs show)
 //   reset          Identity-Reset-like restart (through the card's ResetControl: queued replies first)
 //   watchdog-test  stops the event loop for good (interrupts stay on), to show that the watchdog resets
@@ -11,6 +15,11 @@
 //
 // A line longer than kMaxLine is refused whole ("error line too long"), and so is a line during which
 // received bytes were lost ("error input lost"). Device code: no allocation.
+//
+// A long answer (stats is ~7 KB) never blocks the loop and is never cut: it goes out a page at a time,
+// as much as the console's transmit queue takes, and the next page when it has drained (the report is
+// run again and the lines already sent are skipped, so a page is a snapshot of its moment). Input
+// waits until the answer is complete.
 #pragma once
 
 #include <array>
@@ -19,6 +28,7 @@
 #include <string_view>
 
 #include "card.h"
+#include "card_report.h"
 #include "event_loop.h"
 #include "fpgaio_leds.h"
 #include "hal/console.h"
@@ -45,19 +55,30 @@ class BoardConsole final : public Service {
   explicit BoardConsole(const BoardConsoleDevices& devices) : devices_(devices) {}
 
   void Poll(hal::Micros now) override;
-  hal::Micros NextDeadline() const override { return hal::kNever; }  // input wakes the loop
+  // Input wakes the loop; an answer still going out is continued once its queue had time to drain.
+  hal::Micros NextDeadline() const override {
+    return answer_ == Answer::kNone ? hal::kNever : last_poll_ + kPageInterval;
+  }
 
  private:
+  static constexpr hal::Micros kPageInterval = 2 * hal::kMicrosPerMilli;
+  enum class Answer : std::uint8_t { kNone, kStats, kConfig };
+  class PageSink;
+
   void Execute(std::string_view line);
-  void Stats();
+  // Sends the next page of the answer in progress; ends it with "ok" once every line is out.
+  void ContinueAnswer();
+  void Report(ReportSink& sink);
   void Print(std::string_view text);
-  void Value(std::string_view name, std::uint64_t value);
 
   BoardConsoleDevices devices_;
   std::array<char, kMaxLine> line_{};
   std::size_t length_ = 0;
   enum class Refusal : std::uint8_t { kNone, kTooLong, kInputLost };
   Refusal refusal_ = Refusal::kNone;  // why the line being typed will be refused
+  Answer answer_ = Answer::kNone;     // a long answer going out
+  std::size_t lines_sent_ = 0;        // of that answer
+  hal::Micros last_poll_ = 0;
 };
 
 }  // namespace firmware::board

@@ -119,6 +119,8 @@ class Card {
 
   // The card's objects, for the host's control socket and reports and for tests.
   CardNetif& netif() { return netif_; }
+  const CardNetif& netif() const { return netif_; }
+  const hal::Clock& clock() const { return clock_; }
   const CardAddressing& addressing() const { return addressing_; }
   EventLoop& loop() { return loop_; }
   const drive_link::RegisterProxy& proxy() const { return proxy_; }

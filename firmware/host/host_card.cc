@@ -8,15 +8,14 @@
 #include "address_plan.h"
 #include "capturing_frame_port.h"
 #include "card.h"
+#include "card_control.h"
 #include "card_lines.h"
 #include "card_records.h"
-#include "card_report.h"
 #include "control_server.h"
 #include "file_nv_store.h"
 #include "host_clock.h"
 #include "host_random.h"
 #include "logging_leds.h"
-#include "network_report.h"
 #include "pcap_writer.h"
 #include "poll_waiter.h"
 #include "signal_source.h"
@@ -176,13 +175,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   hal::host::SignalSource signals;
   waiter.Register(signals);
 
-  const DriveReport drive_report{card->proxy(), card->modbus_server(), card->modbus_service(), card->eip(),
-                                 card->parameter_writer()};
-  const NetworkReport network_report{card->netif(), card->addressing(), card->indicators()};
-  const PoolReport pool_report{card->modbus_service(), card->modbus_server(), card->eip(),
-                               card->proxy(),          card->parameter_writer(), card->web_service(),
-                               card->http_server(),    card->access(),         clock};
-  CardReport report{card->netif(), card->loop(), logged_leds, waiter, &drive_report, &network_report, &pool_report};
+  CardReport report{card->netif(), card->loop(), logged_leds, waiter, card.get()};
   std::unique_ptr<hal::host::ControlServer> control;
   if (!options.sim_control_path.empty()) {
     control = std::make_unique<hal::host::ControlServer>(
@@ -198,7 +191,9 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   while (!signals.stop_requested() && !reset.has_value()) {
     reset = card->RunOnce();
     if (card->TakeAddressChange()) {
-      std::printf("address %s\n", DescribeAddress(network_report).c_str());
+      firmware::TextLine address;
+      firmware::DescribeAddress(card->addressing(), address);
+      std::printf("address %.*s\n", static_cast<int>(address.view().size()), address.view().data());
       std::fflush(stdout);
     }
     if (!ready_printed && card->Readiness().ready()) {

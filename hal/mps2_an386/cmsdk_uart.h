@@ -81,6 +81,8 @@ class CmsdkUart final : public SerialPort {
 
   // Bytes not yet handed to the transmitter.
   std::size_t transmit_pending() const { return transmit_.size(); }
+  // Bytes the transmit queue can still take.
+  std::size_t transmit_room() const { return kTransmitBytes - transmit_.size(); }
   // Receive losses (overruns, a full queue) so far.
   std::uint32_t receive_losses() const { return received_.losses(); }
 

@@ -13,7 +13,8 @@
 namespace hal::mps2 {
 
 inline constexpr std::uint32_t kConsoleBaud = 115200;
-// 1 KiB of transmit queue: the longest answer (stats, ~700 bytes) fits whole.
+// 1 KiB of transmit queue: a line always fits; the long answers (stats, ~7 KB) go out a page at a time
+// as the queue drains (firmware/board/board_console.h).
 using ConsoleUart = CmsdkUart<128, 1024>;
 
 class UartConsole final : public ConsoleOutput, public FatalHandler {
@@ -25,6 +26,8 @@ class UartConsole final : public ConsoleOutput, public FatalHandler {
   [[noreturn]] void Fatal(std::string_view message) override;
 
   std::uint64_t dropped() const { return dropped_; }
+  // Whether `line` and its "\r\n" fit the transmit queue now, so that Write() drops nothing of it.
+  bool Fits(std::string_view line) const { return line.size() + 2 <= uart_.transmit_room(); }
 
  private:
   void Put(std::string_view bytes);

@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "card_report.h"
+#include "card_control.h"
 #include "fake_frame_port.h"
 #include "host_sim_fixture.h"
 #include "sim/register_numbers.h"

@@ -8,14 +8,12 @@
 #include <string>
 #include <string_view>
 
+#include "card.h"
 #include "card_netif.h"
-#include "drive_report.h"
 #include "event_loop.h"
 #include "hal/reset.h"
 #include "logging_leds.h"
-#include "network_report.h"
 #include "poll_waiter.h"
-#include "pool_report.h"
 #include "sim_inverter.h"
 
 namespace host {
@@ -25,12 +23,9 @@ struct CardReport {
   firmware::EventLoop& loop;
   hal::host::LoggingLeds& leds;
   hal::host::PollWaiter& waiter;
-  // The drive link, register proxy and Modbus server; null in tests of the network side alone.
-  const DriveReport* drive = nullptr;
-  // Addressing, switch and LED inputs; null in tests of the network side alone.
-  const NetworkReport* network = nullptr;
-  // The card's own fixed pools (pool.*); null in tests of the network side alone.
-  const PoolReport* pools = nullptr;
+  // The rest of the card (drive link, front ends, addressing, pools: firmware/card/card_report.h);
+  // null in tests of the network side alone.
+  const firmware::Card* card = nullptr;
 };
 
 using SetPlugged = std::function<base::Status(hal::PortId, bool)>;
