@@ -31,6 +31,13 @@ class CardIndicators final : public Service, public ConfigurableService {
   // Starts the power-up test at `now`.
   CardIndicators(const IndicatorSources& sources, hal::Leds& leds, hal::Micros now);
 
+  // Runs the power-up test again from `now`: the card calls it when its loop starts, so that a slow
+  // start (a first boot hashing the default passwords) does not eat into the test's steps.
+  void RestartPowerUpTest(hal::Micros now) {
+    model_.StartPowerUpTest(now);
+    next_change_ = 0;
+  }
+
   base::Status Configure(const drive_link::CardConfig& config) override;
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override { return next_change_; }

@@ -85,6 +85,7 @@ base::Status Card::Start() {
                            static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_)}) {
     if (base::Status added = add(*service); !added.ok()) return added;
   }
+  indicators_.RestartPowerUpTest(clock_.NowMicros());
   failed_part_ = "";
   return base::OkStatus();
 }
