@@ -13,7 +13,7 @@ for bad in "--bogus" "--net eth0" "--ip 10.0.0.1" "--ip 300.1.1.1/24" "--model v
   rc=$?
   set -e
   [ "$rc" = 2 ] || fail "'$bad' exited $rc, expected 2"
-  grep -q "^usage: ipe002z-host" "/tmp/ipe-cli.$$" || fail "'$bad' printed no usage on stderr"
+  grep -q "^usage: $(basename "$FIRMWARE")" "/tmp/ipe-cli.$$" || fail "'$bad' printed no usage on stderr"
 done
 rm -f "/tmp/ipe-cli.$$"
 pass "bad flags: usage on stderr, exit 2"
