@@ -50,7 +50,7 @@ start_loopback_card() {
     --state-dir "$WORK/state" "$@" >"$CARD_LOG" 2>&1 &
   CARD_PID=$!
   trap stop_card EXIT
-  wait_for 10 grep -q '^ready ' "$CARD_LOG" || { cat "$CARD_LOG" >&2; fail "card did not become ready"; }
+  wait_for 30 grep -q '^ready ' "$CARD_LOG" || { cat "$CARD_LOG" >&2; fail "card did not become ready"; }
   CARD_READY=$(grep -m1 '^ready ' "$CARD_LOG")
 }
 
