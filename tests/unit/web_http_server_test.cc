@@ -292,14 +292,16 @@ TEST_F(WebHttpServerTest, SlowRequestTimesOutWith408AndIdleConnectionsClose) {
 }
 
 TEST_F(WebHttpServerTest, WindowReopensWhileTheBufferCanStillTakeAWholeWindow) {
-  constexpr std::size_t kWindow = 2920;
+  constexpr std::size_t kWindow = 536;  // lwIP's TCP_WND
   const HttpClientId id = OpenClient();
-  // A POST with a 4000-byte body: larger than one window, so the window must reopen before it is served.
-  const std::string head = "POST /ok HTTP/1.1\r\nHost: a\r\nContent-Length: 4000\r\n\r\n";
-  const std::string body(4000, 'b');
+  // A POST with a body at its limit (512 bytes): larger than one window with its head, so the window must
+  // reopen before it is served.
+  const std::string head = "POST /ok HTTP/1.1\r\nHost: a\r\nContent-Length: 512\r\n\r\n";
+  const std::string body(kMaxBody, 'b');
   const std::string request = head + body;
+  ASSERT_GT(request.size(), kWindow);
   server.Receive(id, Bytes(std::string_view(request).substr(0, kWindow)), now);
-  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), kWindow);  // 8192 - 2920 free: a window still fits
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), kWindow);  // 2832 - 536 free: a window still fits
   server.Receive(id, Bytes(std::string_view(request).substr(kWindow)), now);
   EXPECT_EQ(server.TakeReleasedInput(id, kWindow), request.size() - kWindow);
   EXPECT_EQ(Drain(id), "HTTP/1.1 200 OK\r\nContent-Length: 3\r\nConnection: keep-alive\r\n\r\nok0");
@@ -307,16 +309,17 @@ TEST_F(WebHttpServerTest, WindowReopensWhileTheBufferCanStillTakeAWholeWindow) {
 }
 
 TEST_F(WebHttpServerTest, WindowStaysShutWhenTheBufferIsNearlyFull) {
-  constexpr std::size_t kWindow = 2920;
+  constexpr std::size_t kWindow = 536;  // lwIP's TCP_WND
   const HttpClientId id = OpenClient();
   // Held: a pending request, and pipelined bytes behind it.
-  const std::string later = "GET /later HTTP/1.1\r\nHost: a\r\nX: " + std::string(3000, 'y') + "\r\n\r\n";
+  const std::string later = "GET /later HTTP/1.1\r\nHost: a\r\nX: " + std::string(1500, 'y') + "\r\n\r\n";
   server.Receive(id, Bytes(later), now);
   EXPECT_EQ(server.TakeReleasedInput(id, kWindow), later.size());
-  server.Receive(id, Bytes(std::string(2500, 'z')), now);
-  // 8192 - 5544 free = 2648 < a window: only what keeps a window's room may be released.
-  const std::size_t free_space = kHttpReceiveBufferBytes - later.size() - 2500;
-  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), 2500 - (kWindow - free_space));
+  server.Receive(id, Bytes(std::string(1000, 'z')), now);
+  // 2832 - 2537 free = 295 < a window: only what keeps a window's room may be released.
+  const std::size_t free_space = kHttpReceiveBufferBytes - later.size() - 1000;
+  ASSERT_EQ(free_space, 295U);
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), 1000 - (kWindow - free_space));
 }
 
 }  // namespace

@@ -30,10 +30,18 @@
 
 namespace web {
 
-inline constexpr std::size_t kMaxHttpClients = 4;
+// A browser loading the page fetches the stylesheet and both scripts at once (lwipopts.h
+// IPE_MAX_HTTP_CLIENTS); a fourth connection takes an idle one's slot or is answered 503.
+inline constexpr std::size_t kMaxHttpClients = 3;
+// lwIP reopens a receive window only in steps of half a window (silly window avoidance): the receive
+// buffer keeps that much room beyond the largest request, so that the last step before a request at the
+// limits is always announced. At least TCP_WND / 2 (static_assert in firmware/web_service.cc).
+inline constexpr std::size_t kHttpReceiveSlack = 272;
 // A whole request (headers and body at their limits) fits: nothing is ever refused back to TCP.
-inline constexpr std::size_t kHttpReceiveBufferBytes = kMaxHeaderBlock + kMaxBody;
-// Headers and an in-buffer body (JSON answers are at most a few KiB; assets are sent from where they are).
+inline constexpr std::size_t kHttpReceiveBufferBytes = kMaxHeaderBlock + kMaxBody + kHttpReceiveSlack;
+// Headers and an in-buffer body. The largest answer is /api/eip-scanner with all 16 CIP connections
+// (about 3.9 KiB); assets are sent from flash, only their head is in the buffer. An answer that does not
+// fit is replaced by a bodiless 500 (counters().overflows).
 inline constexpr std::size_t kHttpResponseBufferBytes = 4096;
 inline constexpr hal::Micros kRequestTimeout = 10 * hal::kMicrosPerSecond;
 inline constexpr hal::Micros kIdleTimeout = 60 * hal::kMicrosPerSecond;
