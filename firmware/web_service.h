@@ -11,7 +11,7 @@
 // - Answers: the head (status line, headers, JSON body) is copied into lwIP; an embedded asset's body is
 //   referenced, not copied (it lives in flash for the program's life). At most TCP_SND_BUF bytes wait
 //   for acknowledgement per connection (lwipopts.h sizes the heap and pbuf pools for 3 such clients and
-//   the busy one).
+//   the busy one). Handing an answer to TCP gives its response buffer back to the server.
 // - Keepalive as the other services (a vanished browser frees its slot).
 #pragma once
 

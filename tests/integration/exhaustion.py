@@ -14,7 +14,8 @@ c500 = 1, EtherNet/IP:
   1. 16 TCP connections to 44818 (twice the 8 sessions): 9 accepted, 7 reset; RegisterSession on the 9:
      8 sessions, 1 answered status 0x0002 (handle 0, exact bytes).
   2. 32 class 1 Forward_Opens (twice the 16 entries of the connection table, input only to 70, 71, 150,
-     151): 16 open, 16 refused 0x01/0x0113 (exact bytes); 12 class 3 (twice the 6 reply stores): 6 open,
+     151): 16 open, 16 refused 0x01/0x0113 (exact bytes), and with the table full /api/eip-scanner (the
+     web API's largest answer) is 200 with all 16; 12 class 3 (twice the 6 reply stores): 6 open,
      6 refused 0x01/0x011A. All closed with Forward_Close.
   3. 10,000 cycles: TCP connect/close; RegisterSession + UnRegisterSession; RegisterSession + close (every
      second one after sending a Get whose reply waits for the drive: the deferred request must be
@@ -25,6 +26,8 @@ TIME_WAIT: the test's client always closes first (an UnRegisterSession goes out 
 one segment), so the TIME_WAIT state stays on the host.
 Every loop is bounded in count and in time.
 """
+import http.client
+import json
 import os
 import socket
 import struct
@@ -364,6 +367,7 @@ def ethernet_ip():
     stats = ctl("stats")
     expect_pool(stats, "cip_connections", CIP_CONNECTIONS, CIP_CONNECTIONS, CIP_CONNECTIONS)
     expect_pool(stats, "cip_productions", CIP_CONNECTIONS, CIP_CONNECTIONS, 0)
+    eip_scanner_with_every_connection()
     for triad, path in opened:
         close_connection(client, triad, path, "class 1")
     opened = open_twice(client, CIP_EXPLICIT, 0x011A,
@@ -409,6 +413,30 @@ def ethernet_ip():
                                           "cip.open_requests": CYCLES // 4, "cip.close_requests": CYCLES // 4})
     sink.close()
     ok("every lwIP pool, the heap and every pool of the card at their baseline; no PCB in TIME_WAIT")
+
+
+def eip_scanner_with_every_connection():
+    """The web API's largest answer, /api/eip-scanner with the whole connection table in use, fits the web
+    server's response buffer (docs/web.md "Connections"): 200 with every connection, not 500. The session
+    is logged out again, so the pools come back to their baseline."""
+    web = http.client.HTTPConnection(CARD_IP, HTTP_PORT, timeout=5)
+    web.request("POST", "/api/login", body=json.dumps({"password": "USER"}),
+                headers={"Content-Type": "application/json"})
+    answer = web.getresponse()
+    login = json.loads(answer.read())
+    same("POST /api/login", answer.status, 200)
+    cookie = answer.getheader("Set-Cookie").split(";")[0]
+    web.request("GET", "/api/eip-scanner", headers={"Cookie": cookie})
+    answer = web.getresponse()
+    body = answer.read()
+    same(f"GET /api/eip-scanner with {CIP_CONNECTIONS} connections", answer.status, 200)
+    same("connections listed", len(json.loads(body)["connections"]), CIP_CONNECTIONS)
+    web.request("POST", "/api/logout", headers={"Cookie": cookie, "X-CSRF-Token": login["csrf"]})
+    answer = web.getresponse()
+    answer.read()
+    same("POST /api/logout", answer.status, 204)
+    web.close()
+    ok(f"/api/eip-scanner with {CIP_CONNECTIONS} connections: 200, {len(body)} bytes of JSON")
 
 
 def wait_listening(counter):
