@@ -57,6 +57,10 @@ inline constexpr hal::Micros kDefaultListIdentityMaxDelay = 2000 * hal::kMicrosP
 inline constexpr hal::Micros kMinListIdentityMaxDelay = 500 * hal::kMicrosPerMilli;
 // Every reply fits this many bytes (the lwIP binding must be able to queue one such reply).
 inline constexpr std::size_t kMaxReplyMessage = kMaxEncapsulationMessage;
+// Every reply on UDP fits this many bytes: the largest is ListIdentity with a 32-character product name
+// (24-byte header, item count 2, item type and length 4, identity item 34 + 32); ListServices is 46 bytes,
+// ListInterfaces 26, an error reply 24.
+inline constexpr std::size_t kMaxUdpReply = 96;
 
 // What the card says about itself in ListIdentity (the composition root builds it from the Identity
 // object and the TCP/IP interface).
@@ -183,7 +187,7 @@ class EncapsulationServer {
   std::array<Connection, kMaxTcpConnections> connections_{};
   std::array<DelayedReply, kMaxDelayedReplies> delayed_{};
   std::array<std::uint8_t, kMaxReplyMessage> tcp_reply_{};
-  std::array<std::uint8_t, kMaxReplyMessage> udp_reply_{};
+  std::array<std::uint8_t, kMaxUdpReply> udp_reply_{};
   base::PoolWatermark connection_marks_;
   base::PoolWatermark session_marks_;
   base::PoolWatermark delayed_marks_;
