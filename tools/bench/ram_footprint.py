@@ -161,6 +161,9 @@ def card_layout(build, includes, out_dir, expand_from):
       if size < 16 and depth > 0:
         continue
       print(f"  {'  ' * depth}{size:>8}  {name}  ({type_name})")
+      inner = members(dies, defs, type_offset) if type_offset is not None else []
+      if len(inner) == 1 and inner[0][0] == "_M_elems":  # a std::array: its type says it all
+        continue
       if size >= expand_from and type_offset is not None and depth < 2:
         show(type_offset, depth + 1)
   show(card, 0)
