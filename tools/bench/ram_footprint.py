@@ -144,7 +144,7 @@ def members(dies, defs, class_offset):
   return out
 
 
-def card_layout(build, includes, out_dir, expand_from):
+def card_layout(build, includes, out_dir, expand_from, depth_limit):
   source = os.path.join(out_dir, "card_size.cc")
   with open(source, "w") as f:
     f.write('#include "card/card.h"\nextern "C" { const unsigned ipe_card_size = sizeof(firmware::Card); }\n')
@@ -164,7 +164,7 @@ def card_layout(build, includes, out_dir, expand_from):
       inner = members(dies, defs, type_offset) if type_offset is not None else []
       if len(inner) == 1 and inner[0][0] == "_M_elems":  # a std::array: its type says it all
         continue
-      if size >= expand_from and type_offset is not None and depth < 2:
+      if size >= expand_from and type_offset is not None and depth < depth_limit:
         show(type_offset, depth + 1)
   show(card, 0)
   return int(dies[card]["attrs"]["DW_AT_byte_size"], 0)
@@ -175,13 +175,14 @@ def main():
   parser.add_argument("--build", default="build/host", help="a configured build (its compile_commands.json)")
   parser.add_argument("--budget", type=int, default=80 * 1024, help="bytes for Card + lwIP + other statics")
   parser.add_argument("--expand-from", type=int, default=1024, help="break down members this large")
+  parser.add_argument("--depth", type=int, default=2, help="levels of members below Card's own")
   parser.add_argument("--jobs", type=int, default=2)
   args = parser.parse_args()
 
   entries = list(device_entries(args.build))
   card_includes = next(inc for src, _, inc in entries if src.endswith("firmware/card/card.cc"))
   with tempfile.TemporaryDirectory(prefix="ram_footprint_") as out_dir:
-    card = card_layout(args.build, card_includes, out_dir, args.expand_from)
+    card = card_layout(args.build, card_includes, out_dir, args.expand_from, args.depth)
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
       objects = list(pool.map(lambda e: compile_one(*e, out_dir), entries))
     lwip, ours = [], []
