@@ -12,8 +12,10 @@ namespace firmware {
 namespace {
 
 static_assert(cip::kMaxSessions == IPE_MAX_ENIP_SESSIONS, "lwipopts.h sizes pools for these sessions");
-// One reply in flight per connection is what lwipopts.h reserves heap for.
-static_assert(cip::kMaxReplyMessage <= IPE_TCP_PEER_RESPONSE_BYTES, "a reply must fit its heap share");
+static_assert(cip::kMaxTcpConnections == IPE_ENIP_TCP_CONNECTIONS, "lwipopts.h sizes pools for these connections");
+// One largest reply in flight per session is what lwipopts.h reserves heap for (IPE_HEAP_ENIP).
+static_assert(cip::kMaxReplyMessage == IPE_ENIP_REPLY_BYTES, "lwipopts.h sizes the heap for this reply");
+static_assert(cip::kMaxReplyMessage <= TCP_SND_BUF, "the largest reply must fit an empty send buffer");
 
 cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
   return {lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address))), port};
@@ -69,6 +71,7 @@ void EipService::Poll(hal::Micros now) {
       server_.CloseTcpConnection(expired);
     }
   }
+  static_cast<void>(WriteHeldReply());
   for (Connection& connection : connections_) {
     if (connection.pcb != nullptr && (connection.input_size > 0 || connection.pending)) {
       static_cast<void>(Serve(connection));
@@ -115,7 +118,6 @@ err_t EipService::Accept(tcp_pcb* pcb) {
   connection.pcb = pcb;
   connection.id = *id;
   connection.input_size = 0;
-  connection.held_reply_size = 0;
   connection.close_after_reply = false;
   connection.pending = false;
   AttachTcpConnection(pcb, &connection, TcpSlotCallbacks<Connection>::kCallbacks, options_.keepalive);
@@ -144,23 +146,30 @@ err_t EipService::Receive(Connection& connection, pbuf* p) {
 }
 
 bool EipService::CanTakeReply(const Connection& connection) const {
-  return connection.held_reply_size == 0 && !connection.close_after_reply &&
+  return held_reply_size_ == 0 && !connection.close_after_reply &&
          tcp_sndbuf(connection.pcb) >= cip::kMaxReplyMessage && tcp_sndqueuelen(connection.pcb) < TCP_SND_QUEUELEN;
 }
 
-bool EipService::WriteHeldReply(Connection& connection) {
-  if (connection.held_reply_size == 0) return true;
-  if (tcp_write(connection.pcb, connection.held_reply.data(), static_cast<u16_t>(connection.held_reply_size),
-                TCP_WRITE_FLAG_COPY) != ERR_OK) {
+bool EipService::WriteHeldReply() {
+  if (held_reply_size_ == 0) return true;
+  if (tcp_write(held_by_->pcb, held_reply_.data(), static_cast<u16_t>(held_reply_size_), TCP_WRITE_FLAG_COPY) !=
+      ERR_OK) {
     return false;
   }
-  connection.held_reply_size = 0;
-  tcp_output(connection.pcb);
+  held_reply_size_ = 0;
+  tcp_output(held_by_->pcb);
+  held_by_ = nullptr;
   return true;
 }
 
+void EipService::DropHeldReply(const Connection& connection) {
+  if (held_by_ != &connection) return;
+  held_reply_size_ = 0;
+  held_by_ = nullptr;
+}
+
 err_t EipService::Serve(Connection& connection) {
-  if (!WriteHeldReply(connection)) return ERR_OK;
+  if (!WriteHeldReply()) return ERR_OK;
   if (connection.close_after_reply) {
     ++counters_.closed_by_card;
     return Close(connection);
@@ -189,10 +198,11 @@ err_t EipService::Serve(Connection& connection) {
                     TCP_WRITE_FLAG_COPY) == ERR_OK) {
         tcp_output(connection.pcb);
       } else {
-        // The core's reply buffer is reused by the next call: keep a copy.
+        // The core's reply buffer is reused by the next call: keep a copy (CanTakeReply stops the loop).
         ++counters_.write_stalls;
-        std::memcpy(connection.held_reply.data(), step.reply.data(), step.reply.size());
-        connection.held_reply_size = step.reply.size();
+        std::memcpy(held_reply_.data(), step.reply.data(), step.reply.size());
+        held_reply_size_ = step.reply.size();
+        held_by_ = &connection;
       }
     }
     if (step.close) {
@@ -208,7 +218,7 @@ err_t EipService::Serve(Connection& connection) {
     connection.input_size -= consumed_total;
     tcp_recved(connection.pcb, static_cast<u16_t>(consumed_total));
   }
-  if (connection.close_after_reply && connection.held_reply_size == 0) {
+  if (connection.close_after_reply && held_by_ != &connection) {
     ++counters_.closed_by_card;
     return Close(connection);
   }
@@ -217,10 +227,12 @@ err_t EipService::Serve(Connection& connection) {
 
 void EipService::Lost(Connection& connection) {
   ++counters_.lost;
+  DropHeldReply(connection);
   server_.CloseTcpConnection(connection.id);
 }
 
 err_t EipService::Close(Connection& connection) {
+  DropHeldReply(connection);
   tcp_pcb* pcb = connection.pcb;
   DetachTcpCallbacks(pcb);
   connection.pcb = nullptr;
@@ -229,6 +241,7 @@ err_t EipService::Close(Connection& connection) {
 }
 
 void EipService::Abort(Connection& connection) {
+  DropHeldReply(connection);
   tcp_pcb* pcb = connection.pcb;
   DetachTcpCallbacks(pcb);
   connection.pcb = nullptr;

@@ -4,14 +4,17 @@
 //
 // - Open while c500 = 1 (EtherNet/IP); c500 = 0 (Modbus TCP) closes both ports and resets every
 //   connection (Configure): the card speaks one protocol at a time (seed 000 §3.1 c500).
-// - At most cip::kMaxTcpConnections TCP connections; one more is accepted by TCP and reset at once.
-// - Received bytes are copied into the connection's input buffer and the pbuf is freed at once, so a
-//   client that stops reading its replies holds no receive pbuf (the pool belongs to every peer). The
-//   window is reopened only by bytes the core has consumed, so the buffer (TCP_WND bytes) never
-//   overflows.
-// - The core is fed only while its largest reply (cip::kMaxReplyMessage) fits into the send buffer;
-//   a reply tcp_write still refuses (no heap or segment) is kept in the connection and written first
-//   when lwIP acknowledges data or polls. Nothing is dropped: the client's requests wait in its window.
+// - At most cip::kMaxTcpConnections (9) TCP connections; one more is accepted by TCP and reset at once.
+// - Received bytes are copied into the connection's input buffer (TCP_WND = 536 bytes) and the pbuf is
+//   freed at once, so a client that stops reading its replies holds no receive pbuf (the pool belongs to
+//   every peer). The window is reopened only by bytes the core has consumed, so the buffer never
+//   overflows; a message longer than the window arrives in several windows (the core's assembler keeps
+//   it).
+// - The core is fed only while its largest reply (cip::kMaxReplyMessage) fits into the send buffer.
+//   A reply tcp_write still refuses (the heap or the segment pool is exhausted, lwipopts.h IPE_HEAP_ENIP)
+//   is kept in the service's one held-reply buffer and written first when lwIP acknowledges data or
+//   polls; meanwhile no connection is fed (the heap is shared, so the others could not write either).
+//   Nothing is dropped: the clients' requests wait in their windows.
 // - UDP: each datagram is handed over whole (a longer one than any request is dropped and counted);
 //   replies go to the sender; delayed broadcast ListIdentity replies leave from Poll when due.
 // - Dead peers: TCP keepalive (TcpKeepalive) and the core's inactivity timeout.
@@ -88,9 +91,6 @@ class EipService final : public Service, public ConfigurableService {
     // Received, not yet consumed by the core (at most one window).
     std::array<std::uint8_t, TCP_WND> input{};
     std::size_t input_size = 0;
-    // A reply tcp_write refused, written before anything else.
-    std::array<std::uint8_t, cip::kMaxReplyMessage> held_reply{};
-    std::size_t held_reply_size = 0;
     bool close_after_reply = false;
     bool pending = false;  // the core holds a message whose reply is deferred
   };
@@ -107,7 +107,10 @@ class EipService final : public Service, public ConfigurableService {
   // Returns ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
   err_t Serve(Connection& connection);
   bool CanTakeReply(const Connection& connection) const;
-  bool WriteHeldReply(Connection& connection);
+  // Writes the held reply (whichever connection holds it); false while tcp_write still refuses it.
+  bool WriteHeldReply();
+  // The connection is gone: a reply it held goes with it.
+  void DropHeldReply(const Connection& connection);
   err_t Close(Connection& connection);
   void Abort(Connection& connection);
   Connection* FindConnection(cip::TcpConnectionId id);
@@ -120,6 +123,10 @@ class EipService final : public Service, public ConfigurableService {
   tcp_pcb* listener_ = nullptr;
   udp_pcb* udp_ = nullptr;
   std::array<Connection, cip::kMaxTcpConnections> connections_{};
+  // A reply tcp_write refused (one for all connections: while it waits, no connection is fed).
+  std::array<std::uint8_t, cip::kMaxReplyMessage> held_reply_{};
+  std::size_t held_reply_size_ = 0;
+  Connection* held_by_ = nullptr;
   std::array<std::uint8_t, cip::kMaxEncapsulationMessage> datagram_{};  // one received datagram
   EipCounters counters_;
   base::PoolWatermark slot_marks_;

@@ -13,6 +13,13 @@ namespace {
 
 // Everything TCP may deliver fits into the server: the window is never larger than its buffer.
 static_assert(modbus::kReceiveBufferBytes >= TCP_WND, "the Modbus receive buffer must hold a whole TCP window");
+// lwIP reopens a window only in steps of TCP_WND / 2 (silly window avoidance): a full buffer that ends in
+// a partial ADU must free that much by answering the whole ADUs before it, or the window never reopens.
+static_assert(modbus::kReceiveBufferBytes - (modbus::kMaxAduBytes - 1) >= TCP_WND / 2,
+              "a partial ADU must leave half a window of answerable requests in the buffer");
+static_assert(modbus::kMaxAduBytes == IPE_MODBUS_ADU_BYTES, "lwipopts.h sizes the heap for this ADU");
+static_assert(ModbusTcpService::kMaxUnacknowledgedBytes == IPE_MODBUS_UNACKED_BYTES,
+              "lwipopts.h sizes the heap for this many unacknowledged bytes");
 static_assert(modbus::Server::kMaxClients == IPE_MAX_MODBUS_CLIENTS, "lwipopts.h sizes pools for these clients");
 
 modbus::Ipv4Address PeerAddress(const tcp_pcb* pcb) {

@@ -52,7 +52,7 @@ struct ModbusTcpCounters {
 class ModbusTcpService final : public Service, public ConfigurableService {
  public:
   // In flight per connection: two largest Modbus answers, in at most two segments (lwipopts.h sizes
-  // the heap, IPE_TCP_PEER_RESPONSE_BYTES, and MEMP_NUM_TCP_SEG for that). Answers a pipelining client
+  // the heap, IPE_HEAP_MODBUS, and MEMP_NUM_TCP_SEG for that). Answers a pipelining client
   // is owed meanwhile wait in the server and leave together in the next segment.
   static constexpr std::size_t kMaxUnacknowledgedBytes = 2 * modbus::kMaxAduBytes;
   static constexpr std::size_t kMaxQueuedSegments = 2;

@@ -11,6 +11,9 @@ namespace {
 
 static_assert(web::kMaxHttpClients == IPE_MAX_HTTP_CLIENTS, "lwipopts.h sizes pools for these clients");
 static_assert(web::kHttpReceiveBufferBytes >= TCP_WND, "a whole window must fit the receive buffer");
+// lwIP announces a reopened window only in steps of TCP_WND / 2: the buffer's room beyond the largest
+// request must cover one step, or the last bytes of a request at the limits could never be sent.
+static_assert(web::kHttpReceiveSlack >= TCP_WND / 2, "the receive buffer needs half a window beyond a request");
 
 }  // namespace
 

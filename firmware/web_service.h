@@ -10,7 +10,8 @@
 //   buffer allows (HttpServer::TakeReleasedInput), so a request larger than one window still arrives.
 // - Answers: the head (status line, headers, JSON body) is copied into lwIP; an embedded asset's body is
 //   referenced, not copied (it lives in flash for the program's life). At most TCP_SND_BUF bytes wait
-//   for acknowledgement per connection (lwipopts.h sizes the heap and pbuf pools for 4 such clients).
+//   for acknowledgement per connection (lwipopts.h sizes the heap and pbuf pools for 3 such clients and
+//   the busy one). Handing an answer to TCP gives its response buffer back to the server.
 // - Keepalive as the other services (a vanished browser frees its slot).
 #pragma once
 

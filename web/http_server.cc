@@ -32,6 +32,8 @@ base::Result<HttpClientId> HttpServer::Open(hal::Micros now) {
     client.open = true;
     client.input_used = 0;
     client.unreleased = 0;
+    client.response = kNoResponse;
+    client.waiting_for_response = false;
     client.head_left = {};
     client.body_left = {};
     client.request_bytes = 0;
@@ -69,6 +71,43 @@ void HttpServer::Close(HttpClientId id) {
   client.request_active = false;
   client.head_left = {};
   client.body_left = {};
+  client.waiting_for_response = false;
+  GiveBackResponse(client);
+}
+
+bool HttpServer::TakeResponse(Client& client) {
+  if (client.response != kNoResponse) return true;
+  for (std::size_t i = 0; i < kHttpResponseBuffers; ++i) {
+    if (response_taken_[i]) continue;
+    response_taken_[i] = true;
+    client.response = i;
+    client.waiting_for_response = false;
+    response_marks_.NoteTaken(responses_in_use());
+    return true;
+  }
+  if (!client.waiting_for_response) {
+    // Counted once per answer, not once per attempt.
+    client.waiting_for_response = true;
+    ++counters_.response_waits;
+    response_marks_.NoteRefused();
+  }
+  return false;
+}
+
+void HttpServer::GiveBackResponse(Client& client) {
+  if (client.response == kNoResponse) return;
+  response_taken_[client.response] = false;
+  client.response = kNoResponse;
+}
+
+std::size_t HttpServer::responses_in_use() const {
+  return static_cast<std::size_t>(std::count(response_taken_.begin(), response_taken_.end(), true));
+}
+
+bool HttpServer::AnyWaitingWithResponseFree() const {
+  if (responses_in_use() == kHttpResponseBuffers) return false;
+  return std::any_of(clients_.begin(), clients_.end(),
+                     [](const Client& c) { return c.open && !c.must_close && c.waiting_for_response; });
 }
 
 std::size_t HttpServer::open_clients() const {
@@ -99,10 +138,15 @@ void HttpServer::Poll(hal::Micros now) {
     if (!client.open || client.must_close) continue;
     const auto id = static_cast<HttpClientId>(i);
     Serve(client, id, now);
+    if (!client.head_left.empty() && now - client.answer_written >= kRequestTimeout) {
+      // The client does not take its answer: give the response buffer to the others.
+      ++counters_.answer_timeouts;
+      client.must_close = true;
+      continue;
+    }
     if (OutputPending(client) || client.request_active || client.close_after_output) continue;
     if (client.input_used != 0 && now - client.request_started >= kRequestTimeout) {
-      ++counters_.request_timeouts;
-      SendError(client, HttpStatus::kRequestTimeout);
+      if (SendError(client, HttpStatus::kRequestTimeout, now)) ++counters_.request_timeouts;
     } else if (client.input_used == 0 && now - client.last_activity >= kIdleTimeout) {
       ++counters_.idle_closed;
       client.must_close = true;
@@ -113,9 +157,11 @@ void HttpServer::Poll(hal::Micros now) {
 hal::Micros HttpServer::NextDeadline() const {
   hal::Micros next = hal::kNever;
   bool any_pending = false;
+  if (AnyWaitingWithResponseFree()) return 0;
   for (const Client& client : clients_) {
     if (!client.open) continue;
     if (client.must_close) return 0;
+    if (!client.head_left.empty()) next = std::min(next, client.answer_written + kRequestTimeout);
     if (client.request_active) {
       any_pending = true;
       continue;
@@ -141,6 +187,8 @@ void HttpServer::ConsumeOutput(HttpClientId id, std::size_t count, hal::Micros n
   const std::size_t from_head = std::min(count, client.head_left.size());
   client.head_left = client.head_left.subspan(from_head);
   count -= from_head;
+  // The response buffer's bytes are with the transport: the buffer may serve another answer.
+  if (client.head_left.empty()) GiveBackResponse(client);
   client.body_left = client.body_left.subspan(std::min(count, client.body_left.size()));
   if (OutputPending(client)) return;
   if (client.close_after_output) {
@@ -171,8 +219,8 @@ void HttpServer::Serve(Client& client, HttpClientId id, hal::Micros now) {
         ParseHttpRequest(std::span<const std::uint8_t>(client.input.data(), client.input_used), client.request);
     if (parsed.state == ParseState::kIncomplete) return;
     if (parsed.state == ParseState::kError) {
-      ++counters_.parse_errors;
-      SendError(client, parsed.error);
+      // Without a free response buffer the request is parsed again on a later pass.
+      if (SendError(client, parsed.error, now)) ++counters_.parse_errors;
       return;
     }
     ++counters_.requests;
@@ -183,14 +231,20 @@ void HttpServer::Serve(Client& client, HttpClientId id, hal::Micros now) {
 }
 
 void HttpServer::RunHandler(Client& client, HttpClientId id, hal::Micros now) {
-  HttpResponseWriter writer(client.output);
-  if (handler_.Handle(id, client.request, writer, now) == HandlerResult::kPending) return;
+  // The request waits (Poll tries again) until a response buffer is free.
+  if (!TakeResponse(client)) return;
+  HttpResponseWriter writer(responses_[client.response]);
+  if (handler_.Handle(id, client.request, writer, now) == HandlerResult::kPending) {
+    GiveBackResponse(client);
+    return;
+  }
   const bool keep_alive = client.request.keep_alive;
   writer.Finish(IsHead(client.request), keep_alive);
   if (writer.overflowed()) ++counters_.overflows;
   CountResponse(writer.status());
   client.head_left = writer.head();
   client.body_left = writer.external_body();
+  client.answer_written = now;
   client.close_after_output = !keep_alive || writer.overflowed();
   // The request is answered: its bytes leave the buffer (the answer no longer refers to them).
   client.request_active = false;
@@ -199,8 +253,9 @@ void HttpServer::RunHandler(Client& client, HttpClientId id, hal::Micros now) {
   client.request_bytes = 0;
 }
 
-void HttpServer::SendError(Client& client, HttpStatus status) {
-  HttpResponseWriter writer(client.output);
+bool HttpServer::SendError(Client& client, HttpStatus status, hal::Micros now) {
+  if (!TakeResponse(client)) return false;
+  HttpResponseWriter writer(responses_[client.response]);
   writer.Start(status);
   writer.Header("Content-Type", "application/json");
   writer.BodyText("{\"error\":\"");
@@ -210,9 +265,11 @@ void HttpServer::SendError(Client& client, HttpStatus status) {
   CountResponse(writer.status());
   client.head_left = writer.head();
   client.body_left = {};
+  client.answer_written = now;
   client.close_after_output = true;
   // Nothing more is parsed on this connection.
   client.input_used = 0;
+  return true;
 }
 
 void HttpServer::CountResponse(HttpStatus status) {

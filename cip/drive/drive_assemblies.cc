@@ -7,6 +7,9 @@ namespace cip::drive {
 
 namespace {
 
+// The connection manager's I/O datagrams are sized for the card's assemblies (cip::kMaxIoData).
+static_assert(kMaxAssemblySize <= cip::kMaxIoData, "every assembly must fit the connection manager's I/O buffers");
+
 // Refusals of IoApplication::Describe (docs/connections.md).
 constexpr std::uint16_t kNoSuchConfigurationPoint = 0x0129;
 constexpr std::uint16_t kNoSuchConsumedPoint = 0x012A;

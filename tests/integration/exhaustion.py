@@ -8,13 +8,14 @@ c500 = 0, Modbus TCP (and the web server, open with either protocol):
      8 used, 8 refused.
   2. 10,000 connect/close cycles on port 502: every fourth with a request and its exact answer, every
      fourth another with a drive read the client does not wait for (the proxy's access must be freed).
-  3. 8 HTTP connections (twice the 4 slots), each of the first 4 with a request under way: the other 4
-     get exactly the 503 answer, then FIN (the card closes those first: 4 PCBs in TIME_WAIT, counted).
+  3. 6 HTTP connections (twice the 3 slots), each of the first 3 with a request under way: the other 3
+     get exactly the 503 answer, then FIN (the card closes those first: 3 PCBs in TIME_WAIT, counted).
 c500 = 1, EtherNet/IP:
-  1. 16 TCP connections to 44818 (twice the 8 sessions): 10 accepted, 6 reset; RegisterSession on the 10:
-     8 sessions, 2 answered status 0x0002 (handle 0, exact bytes).
+  1. 16 TCP connections to 44818 (twice the 8 sessions): 9 accepted, 7 reset; RegisterSession on the 9:
+     8 sessions, 1 answered status 0x0002 (handle 0, exact bytes).
   2. 32 class 1 Forward_Opens (twice the 16 entries of the connection table, input only to 70, 71, 150,
-     151): 16 open, 16 refused 0x01/0x0113 (exact bytes); 12 class 3 (twice the 6 reply stores): 6 open,
+     151): 16 open, 16 refused 0x01/0x0113 (exact bytes), and with the table full /api/eip-scanner (the
+     web API's largest answer) is 200 with all 16; 12 class 3 (twice the 6 reply stores): 6 open,
      6 refused 0x01/0x011A. All closed with Forward_Close.
   3. 10,000 cycles: TCP connect/close; RegisterSession + UnRegisterSession; RegisterSession + close (every
      second one after sending a Get whose reply waits for the drive: the deferred request must be
@@ -25,6 +26,8 @@ TIME_WAIT: the test's client always closes first (an UnRegisterSession goes out 
 one segment), so the TIME_WAIT state stays on the host.
 Every loop is bounded in count and in time.
 """
+import http.client
+import json
 import os
 import socket
 import struct
@@ -55,11 +58,11 @@ READ_ACC = bytes.fromhex("0002 0000 0006 01 03 0009 0001")  # a drive register: 
 VERSION_ANSWER = bytes.fromhex("0001 0000 0005 FB 03 02 0106")
 
 HTTP_PORT = 80
-HTTP_CLIENTS = 4
+HTTP_CLIENTS = 3
 HTTP_BUSY = (b"HTTP/1.1 503 Service Unavailable\r\nContent-Type: application/json\r\nRetry-After: 1\r\n"
              b"Content-Length: 23\r\nConnection: close\r\n\r\n{\"error\":\"server busy\"}")
 
-EIP_TCP_CONNECTIONS = 10
+EIP_TCP_CONNECTIONS = 9
 EIP_SESSIONS = 8
 CIP_CONNECTIONS = 16
 CIP_EXPLICIT = 6
@@ -194,7 +197,7 @@ def run_cycles(name, cycle):
 # ---- HTTP ------------------------------------------------------------------------------------------
 
 def http_slots():
-    """Twice the 4 HTTP slots, each taken by a request under way: the other 4 get 503 and FIN (an idle
+    """Twice the 3 HTTP slots, each taken by a request under way: the other 3 get 503 and FIN (an idle
     connection would be closed to make room instead: docs/web.md)."""
     baseline = watched(ctl("stats"))
     busy = []
@@ -364,6 +367,7 @@ def ethernet_ip():
     stats = ctl("stats")
     expect_pool(stats, "cip_connections", CIP_CONNECTIONS, CIP_CONNECTIONS, CIP_CONNECTIONS)
     expect_pool(stats, "cip_productions", CIP_CONNECTIONS, CIP_CONNECTIONS, 0)
+    eip_scanner_with_every_connection()
     for triad, path in opened:
         close_connection(client, triad, path, "class 1")
     opened = open_twice(client, CIP_EXPLICIT, 0x011A,
@@ -409,6 +413,30 @@ def ethernet_ip():
                                           "cip.open_requests": CYCLES // 4, "cip.close_requests": CYCLES // 4})
     sink.close()
     ok("every lwIP pool, the heap and every pool of the card at their baseline; no PCB in TIME_WAIT")
+
+
+def eip_scanner_with_every_connection():
+    """The web API's largest answer, /api/eip-scanner with the whole connection table in use, fits the web
+    server's response buffer (docs/web.md "Connections"): 200 with every connection, not 500. The session
+    is logged out again, so the pools come back to their baseline."""
+    web = http.client.HTTPConnection(CARD_IP, HTTP_PORT, timeout=5)
+    web.request("POST", "/api/login", body=json.dumps({"password": "USER"}),
+                headers={"Content-Type": "application/json"})
+    answer = web.getresponse()
+    login = json.loads(answer.read())
+    same("POST /api/login", answer.status, 200)
+    cookie = answer.getheader("Set-Cookie").split(";")[0]
+    web.request("GET", "/api/eip-scanner", headers={"Cookie": cookie})
+    answer = web.getresponse()
+    body = answer.read()
+    same(f"GET /api/eip-scanner with {CIP_CONNECTIONS} connections", answer.status, 200)
+    same("connections listed", len(json.loads(body)["connections"]), CIP_CONNECTIONS)
+    web.request("POST", "/api/logout", headers={"Cookie": cookie, "X-CSRF-Token": login["csrf"]})
+    answer = web.getresponse()
+    answer.read()
+    same("POST /api/logout", answer.status, 204)
+    web.close()
+    ok(f"/api/eip-scanner with {CIP_CONNECTIONS} connections: 200, {len(body)} bytes of JSON")
 
 
 def wait_listening(counter):

@@ -8,7 +8,7 @@
 #
 # Slow peers: on each port, clients that send a valid request one byte per second and clients that send
 # requests without ever reading, together one less than the port's slot limit (Modbus 8: 4 + 3; EtherNet/IP
-# 10 TCP connections: 5 + 4; HTTP 4: 2 + 1). The last slot's healthy client does HEALTHY_N (2000)
+# 9 TCP connections: 4 + 4; HTTP 3: 1 + 1). The last slot's healthy client does HEALTHY_N (2000)
 # request/response round trips; its p99 must stay below 5 ms (the percentiles are printed, with the same
 # client's figures before the hostile peers came, for comparison). Afterwards the card serves a fresh
 # client and its pools are back where they started (lwIP memp "used" of TCP PCBs and segments).
@@ -35,8 +35,8 @@ LIMIT_MS=5
 FLOOD_SECONDS=${FLOOD_SECONDS:-8}
 
 case "$MODE" in
-  modbus) protocols=(modbus http); specs=(modbus:4:3 http:2:1) ;;
-  eip) protocols=(eip http); specs=(eip:5:4 http:2:1) ;;
+  modbus) protocols=(modbus http); specs=(modbus:4:3 http:1:1) ;;
+  eip) protocols=(eip http); specs=(eip:4:4 http:1:1) ;;
   *) fail "unknown mode $MODE" ;;
 esac
 for p in "${protocols[@]}"; do

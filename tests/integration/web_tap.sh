@@ -8,7 +8,7 @@
 #       inverter, refusals mapped to 409/422/404, network, scanners, statistics;
 #   (d) passwords: change the read password, the old one is refused, no plain text in the card's store;
 #   (e) back-off: 3 free failures, then 1 s waits answered 429 with Retry-After;
-#   (f) slots: a 5th connection takes an idle one's slot; with 4 busy connections it gets 503;
+#   (f) slots: a 4th connection takes an idle one's slot; with 3 busy connections it gets 503;
 #   (g) c554 = 0 (written through the API, communication reset) closes port 80; c554 = 1 and f899 = 1
 #       over Modbus open it again;
 #   (h) tshark finds no malformed HTTP in the capture.
@@ -118,8 +118,8 @@ expect "after the wait" "$(http POST /api/login '{"password":"Secret-1"}')" 200
 CSRF=$(json "j['csrf']")
 pass "back-off: 429 with Retry-After during the wait, login after it"
 
-# (f) Slots: 4 idle keep-alive connections, a 5th is served (an idle one is closed); 4 busy ones (a
-# partial request each), a 5th gets 503.
+# (f) Slots (web::kMaxHttpClients = 3): 3 idle keep-alive connections, a 4th is served (an idle one is
+# closed); 3 busy ones (a partial request each), a 4th gets 503.
 /usr/bin/python3 - "$CARD_IP" <<'PY' || fail "slots"
 import socket, sys, time
 ip = sys.argv[1]
@@ -133,14 +133,15 @@ def get(s):
         if not chunk: break
         data += chunk
     return data
-idle = [conn() for _ in range(4)]
+SLOTS = 3
+idle = [conn() for _ in range(SLOTS)]
 for s in idle: assert get(s).startswith(b"HTTP/1.1 200"), "idle client not served"
-fifth = conn()
-assert get(fifth).startswith(b"HTTP/1.1 200"), "5th client not served"
-fifth.close()
+fourth = conn()
+assert get(fourth).startswith(b"HTTP/1.1 200"), "4th client not served"
+fourth.close()
 for s in idle: s.close()
 time.sleep(0.3)
-busy = [conn() for _ in range(4)]
+busy = [conn() for _ in range(SLOTS)]
 for s in busy: s.sendall(b"GET /api/session HTTP/1.1\r\n")  # incomplete: the slot is busy
 time.sleep(0.3)
 extra = conn()
@@ -149,7 +150,7 @@ assert answer.startswith(b"HTTP/1.1 503 Service Unavailable"), answer
 assert b"Retry-After: 1" in answer, answer
 for s in busy: s.close()
 PY
-pass "slots: idle eviction for a 5th client, 503 when all 4 are busy"
+pass "slots: idle eviction for a 4th client, 503 when all 3 are busy"
 
 # (g) c554 = 0 closes the port after a communication reset; Modbus opens it again.
 expect "c554=0" "$(http POST /api/registers '{"number":"C554","value":0}' -H "X-CSRF-Token: $CSRF")" 403

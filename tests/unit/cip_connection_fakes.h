@@ -53,6 +53,8 @@ class FakeIo final : public IoApplication {
                                                                  : IoConnectionKind::kListenOnly;
     spec.consumed_size = points.consumed == 100 ? 8 : points.consumed == 102 ? Variable(requested.consumed) : 0;
     spec.produced_size = points.produced == 150 ? 6 : points.produced == 151 ? 4 : Variable(requested.produced);
+    if (points.consumed == 102 && scanner_consumed_size != 0) spec.consumed_size = scanner_consumed_size;
+    if (points.produced == 152 && scanner_produced_size != 0) spec.produced_size = scanner_produced_size;
     spec.configuration_size = points.configuration == 2U ? 4 : 0;
     return spec;
   }
@@ -82,6 +84,9 @@ class FakeIo final : public IoApplication {
   std::uint16_t refuse_configuration = 0;
   int productions = 0;
   mutable IoRequestedSizes last_requested;
+  // Sizes 102 / 152 claim instead of their 2 to 8 words (0: as usual), for the connection manager's limits.
+  std::uint16_t scanner_consumed_size = 0;
+  std::uint16_t scanner_produced_size = 0;
 };
 
 class FakeMulticastGroups final : public MulticastAddressProvider {

@@ -312,6 +312,31 @@ TEST(CipConnectionManagerTest, RefusesElectronicKeys) {
   EXPECT_EQ(card.Open(with_key("34 04 79 01 02 00 01 7D 81 07"))[2], 0x00);
 }
 
+TEST(CipConnectionManagerTest, IoDataUpToKMaxIoDataOneByteMoreIsRefused) {
+  // Points whose data is kMaxIoData (32) bytes open (O->T 2 + 4 + 32, T->O 2 + 32); a point of 33 bytes is
+  // refused 0x01 with the consuming / producing path's extended status, before its sizes are compared.
+  ConnectionCard card;
+  OpenParams params;
+  params.path = Hex("20 04 24 01 2C 66 2C 98");  // 102 / 152
+  params.o_to_t.size = 2 + 4 + kMaxIoData;
+  params.t_to_o.size = 2 + kMaxIoData;
+  card.io.scanner_consumed_size = kMaxIoData;
+  card.io.scanner_produced_size = kMaxIoData;
+  EXPECT_EQ(card.Open(params).at(2), 0x00);
+  // Another triad (serial 0x1338), so that the refusals are for the sizes, not a duplicate.
+  params.triad.connection_serial = 0x1338;
+  const auto refused = [](std::string_view extended) {
+    Bytes expected = Refused(extended);
+    expected[6] = 0x38;
+    return expected;
+  };
+  card.io.scanner_consumed_size = kMaxIoData + 1;
+  EXPECT_EQ(card.Open(params), refused("2A 01"));
+  card.io.scanner_consumed_size = kMaxIoData;
+  card.io.scanner_produced_size = kMaxIoData + 1;
+  EXPECT_EQ(card.Open(params), refused("2B 01"));
+}
+
 TEST(CipConnectionManagerTest, RefusesApplicationPathsAndSizes) {
   ConnectionCard card;
   const auto with_path = [](std::string_view path) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cip_test_support.h"
@@ -47,10 +48,11 @@ class FakeDiscovery final : public DiscoverySource {
     item.minor_revision = 8;
     item.status = 0x0030;
     item.serial_number = 0x33445566;
-    (void)item.product_name.Assign("VF-S15");
+    (void)item.product_name.Assign(product_name);
     item.state = 0xFF;
     return item;
   }
+  std::string product_name = "VF-S15";
 };
 
 class FakeConnected final : public ConnectedMessageHandler {
@@ -419,6 +421,25 @@ TEST_F(CipEncapsulationServerTest, UnicastListIdentityIsAnsweredAtOnce) {
   const UdpDecision services = server_.OnUdpDatagram(Header(0x04, 0, 0), kBroadcast, now_);
   ASSERT_EQ(services.action, UdpDecision::Action::kSendNow);
   EXPECT_EQ(Of(services.reply).at(0), 0x04);
+}
+
+TEST_F(CipEncapsulationServerTest, ListIdentityWithTheLongestProductNameFillsTheUdpReplyExactly) {
+  // The Identity object's product name is at most 32 characters; one more is not accepted by the item.
+  IdentityItem item;
+  EXPECT_FALSE(item.product_name.Assign(std::string(33, 'N')));
+  discovery_.product_name = std::string(32, 'N');
+  const UdpDecision decision = server_.OnUdpDatagram(Header(0x63, 0, 0), kUnicast, now_);
+  ASSERT_EQ(decision.action, UdpDecision::Action::kSendNow);
+  const Bytes reply = Of(decision.reply);
+  ASSERT_EQ(reply.size(), kMaxUdpReply);
+  EXPECT_EQ(Bytes(reply.begin(), reply.begin() + 4), Hex("63 00 48 00"));  // 72 bytes of data
+  EXPECT_EQ(Bytes(reply.end() - 34, reply.end()), test::Concat(test::Concat(Hex("20"), Bytes(32, 'N')), Hex("FF")));
+  // The same reply when it leaves later, to a broadcast request.
+  random_.Push(0);
+  ASSERT_EQ(server_.OnUdpDatagram(Header(0x63, 0, 0), kBroadcast, now_).action, UdpDecision::Action::kSendLater);
+  DueDatagram due;
+  ASSERT_TRUE(server_.TakeDueDatagram(now_ + kDefaultListIdentityMaxDelay, due));
+  EXPECT_EQ(Of(due.bytes).size(), kMaxUdpReply);
 }
 
 TEST_F(CipEncapsulationServerTest, BroadcastListIdentityWaitsARandomTimeWithinTheMaxDelay) {

@@ -7,6 +7,7 @@
 
 #include "cip_fakes.h"
 #include "cip_test_support.h"
+#include "lwip/pbuf.h"
 #include "lwip/timeouts.h"
 #include "lwip_tcp_pair.h"
 
@@ -62,6 +63,20 @@ class EipServiceTest : public test::LwipPairTest {
     }
   }
 
+  // Writes whole copies of `request`, at most `count`, as far as the client's send buffer takes them;
+  // returns how many.
+  std::size_t WriteWhatFits(TcpTestClient& client, const Bytes& request, std::size_t count) {
+    std::size_t written = 0;
+    while (written < count && tcp_sndbuf(client.pcb) >= request.size() &&
+           tcp_sndqueuelen(client.pcb) + 1 < TCP_SND_QUEUELEN &&
+           tcp_write(client.pcb, request.data(), static_cast<u16_t>(request.size()), TCP_WRITE_FLAG_COPY) == ERR_OK) {
+      ++written;
+    }
+    EXPECT_EQ(tcp_output(client.pcb), ERR_OK);
+    Pump();
+    return written;
+  }
+
   drive_link::CardConfig config_;
   cip::test::FakeCard card_;
   EipService service_{card_.cip.encapsulation(), clock()};
@@ -93,22 +108,86 @@ TEST_F(EipServiceTest, MessageSplitAcrossSegments_AnsweredOnceComplete) {
 TEST_F(EipServiceTest, ClientStopsReading_NothingLostWhenItReadsAgain) {
   TcpTestClient& client = Connect(kPort);
   client.reading = false;
-  // 100 requests of 24 bytes fit the card's window; their 100 replies (50 bytes each) do not fit the
-  // client's window plus the card's send buffer, so the card must hold input back.
-  Bytes requests;
-  for (int i = 0; i < 100; ++i) requests = Concat(requests, kListServices);
-  Send(client, requests);
+  // 24-byte requests, as many as the client's send buffer takes, until TCP stops taking them: the card's
+  // replies (50 bytes each) are not acknowledged, so its send buffer fills (no more room for a largest
+  // reply), then it holds input back and its window (TCP_WND) closes.
+  constexpr std::size_t kRequests = 100;
+  std::size_t sent = 0;
+  for (int round = 0; round < 50 && sent < kRequests; ++round) {
+    const std::size_t written = WriteWhatFits(client, kListServices, kRequests - sent);
+    if (written == 0) break;
+    sent += written;
+  }
   RunTimers(2000);
-  EXPECT_LT(client.received.size(), 100 * kServicesReply.size());
+  EXPECT_TRUE(client.received.empty());
+  // More requests than replies the card can have unacknowledged while it still has room for a largest one.
+  EXPECT_GT(sent * kServicesReply.size(), static_cast<std::size_t>(TCP_SND_BUF) - cip::kMaxReplyMessage);
+  EXPECT_LT(sent, kRequests);  // TCP stopped the client
   client.reading = true;
+  for (int round = 0; round < 200 && sent < kRequests; ++round) {
+    sent += WriteWhatFits(client, kListServices, kRequests - sent);
+    RunTimers(250);
+  }
+  ASSERT_EQ(sent, kRequests);
   RunTimers(20000);
-  ASSERT_EQ(client.received.size(), 100 * kServicesReply.size());
-  for (int i = 0; i < 100; ++i) {
-    EXPECT_EQ(Bytes(client.received.begin() + i * static_cast<long>(kServicesReply.size()),
-                    client.received.begin() + (i + 1) * static_cast<long>(kServicesReply.size())),
+  ASSERT_EQ(client.received.size(), kRequests * kServicesReply.size());
+  for (std::size_t i = 0; i < kRequests; ++i) {
+    EXPECT_EQ(Bytes(client.received.begin() + static_cast<long>(i * kServicesReply.size()),
+                    client.received.begin() + static_cast<long>((i + 1) * kServicesReply.size())),
               kServicesReply)
         << i;
   }
+}
+
+TEST_F(EipServiceTest, HeapExhausted_ReplyHeldAndNoConnectionFedUntilItIsWritten) {
+  TcpTestClient& first = Connect(kPort);
+  TcpTestClient& second = Connect(kPort);
+  // Both requests are on their way (in the clients' send queues and on the wire) before lwIP's heap runs
+  // out, so the card receives them with no heap left for its replies.
+  for (TcpTestClient* client : {&first, &second}) {
+    ASSERT_EQ(tcp_write(client->pcb, kListServices.data(), static_cast<u16_t>(kListServices.size()),
+                        TCP_WRITE_FLAG_COPY),
+              ERR_OK);
+    ASSERT_EQ(tcp_output(client->pcb), ERR_OK);
+  }
+  std::vector<pbuf*> hog;
+  for (u16_t size = 1024; size >= 16; size = static_cast<u16_t>(size / 2)) {
+    while (pbuf* p = pbuf_alloc(PBUF_RAW, size, PBUF_RAM)) hog.push_back(p);
+  }
+  Pump();
+  // The first reply could not be written: it is held, and no connection is fed meanwhile.
+  EXPECT_EQ(service_.counters().write_stalls, 1u);
+  EXPECT_TRUE(first.received.empty());
+  EXPECT_TRUE(second.received.empty());
+  for (pbuf* p : hog) pbuf_free(p);
+  RunTimers(1000);
+  EXPECT_EQ(first.received, kServicesReply);
+  EXPECT_EQ(second.received, kServicesReply);
+  EXPECT_EQ(service_.counters().write_stalls, 1u);
+}
+
+TEST_F(EipServiceTest, LargestMessageArrivesThroughTheWindow_OneByteMoreIs0x0002) {
+  TcpTestClient& client = Connect(kPort);
+  // SendRRData with 600 bytes of data (kMaxEncapsulationData) and no session: 624 bytes, more than one
+  // window (TCP_WND 536), so the card's window must reopen before the message is whole. The core takes it
+  // and answers 0x0064 (invalid session handle), header only.
+  static_assert(cip::kMaxEncapsulationMessage > TCP_WND);
+  Bytes largest = Header(0x6F, cip::kMaxEncapsulationData, 0);
+  largest.resize(cip::kMaxEncapsulationMessage, 0x00);
+  Send(client, largest);
+  EXPECT_EQ(client.received,
+            Hex("6F 00 00 00 | 00 00 00 00 | 64 00 00 00 | 01 02 03 04 05 06 07 08 | 00 00 00 00"));
+  // One byte more: the message cannot be buffered; its body is counted off and it is answered 0x0002
+  // (insufficient memory), and the connection stays usable.
+  client.received.clear();
+  Bytes beyond = Header(0x6F, cip::kMaxEncapsulationData + 1, 0);
+  beyond.resize(cip::kMaxEncapsulationMessage + 1, 0x00);
+  Send(client, beyond);
+  EXPECT_EQ(client.received,
+            Hex("6F 00 00 00 | 00 00 00 00 | 02 00 00 00 | 01 02 03 04 05 06 07 08 | 00 00 00 00"));
+  client.received.clear();
+  Send(client, kListServices);
+  EXPECT_EQ(client.received, kServicesReply);
 }
 
 TEST_F(EipServiceTest, UnRegisterSession_CardClosesTheConnection) {
@@ -134,10 +213,21 @@ TEST_F(EipServiceTest, PeerCloses_SessionEnds) {
 }
 
 TEST_F(EipServiceTest, ConnectionBeyondTheLimit_ResetOthersStillServed) {
-  std::vector<TcpTestClient*> open;
+  // Every connection slot taken, each connection served. The unit tests' lwIP gives the clients' PCBs from
+  // the card's own pool (lwipopts.h: 9 connections + 3 HTTP + 3 spare PCBs for the card alone), so all but
+  // one are frozen: their connections stay open on the card and the test speaks to them in raw frames.
+  std::vector<test::FrozenTcpClient> frozen;
+  TcpTestClient* live = nullptr;
   for (std::size_t i = 0; i < cip::kMaxTcpConnections; ++i) {
-    open.push_back(&Connect(kPort));
-    ASSERT_TRUE(open.back()->connected) << i;
+    TcpTestClient& client = Connect(kPort);
+    ASSERT_TRUE(client.connected) << i;
+    Send(client, kListServices);
+    ASSERT_EQ(client.received, kServicesReply) << i;
+    if (i + 1 < cip::kMaxTcpConnections) {
+      frozen.push_back(Freeze(client));
+    } else {
+      live = &client;
+    }
   }
   TcpTestClient& extra = Connect(kPort);
   EXPECT_TRUE(extra.reset);
@@ -146,8 +236,10 @@ TEST_F(EipServiceTest, ConnectionBeyondTheLimit_ResetOthersStillServed) {
   EXPECT_EQ(service_.slot_pool(), (base::PoolStats{kMax, kMax, kMax, 1}));
   // The binding refused it before the core was asked.
   EXPECT_EQ(card_.cip.encapsulation().connection_pool(), (base::PoolStats{kMax, kMax, kMax, 0}));
-  Send(*open.front(), kListServices);
-  EXPECT_EQ(open.front()->received, kServicesReply);
+  for (std::size_t i = 0; i < frozen.size(); ++i) EXPECT_EQ(ExchangeFrozen(frozen[i], kListServices), kServicesReply) << i;
+  Send(*live, kListServices);
+  EXPECT_EQ(live->received, Concat(kServicesReply, kServicesReply));
+  EXPECT_EQ(service_.counters().lost, 0u);
 }
 
 TEST_F(EipServiceTest, UnicastUdpListServices_AnsweredToTheSender) {

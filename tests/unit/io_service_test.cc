@@ -97,9 +97,13 @@ TEST_F(IoServiceTest, OverlongDatagramIsDroppedHere) {
   EXPECT_EQ(service_.counters().received, 1U);
   EXPECT_EQ(service_.counters().too_long, 1U);
   EXPECT_EQ(card_.cm.dropped_datagrams(), 0U);
-  // A short one goes to the manager, which drops what it cannot use.
-  SendTo(peer, test::kCardIp, cip::kIoPort, Hex("02 00"));
+  // kMaxIoDatagram (56) bytes go to the manager, which drops what it cannot use (no such connection).
+  SendTo(peer, test::kCardIp, cip::kIoPort, Bytes(cip::kMaxIoDatagram, 0x00));
+  EXPECT_EQ(service_.counters().too_long, 1U);
   EXPECT_EQ(card_.cm.dropped_datagrams(), 1U);
+  // So does a short one.
+  SendTo(peer, test::kCardIp, cip::kIoPort, Hex("02 00"));
+  EXPECT_EQ(card_.cm.dropped_datagrams(), 2U);
 }
 
 TEST_F(IoServiceTest, MulticastProductionsCarryTheConfiguredTtl) {

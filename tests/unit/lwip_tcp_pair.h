@@ -13,6 +13,7 @@
 
 #include "card_netif.h"
 #include "fake_frame_port.h"
+#include "lwip/priv/tcp_priv.h"
 #include "lwip/tcp.h"
 #include "lwip/udp.h"
 #include "lwip_fixture.h"
@@ -86,6 +87,18 @@ struct UdpTestPeer {
   }
 };
 
+// A client connection whose lwIP PCB was released without a word to the card (tcp_abandon, no RST): the
+// card's side stays established and the test speaks to it in raw frames, with the sequence numbers the
+// PCB had (LwipPairTest::Freeze / ExchangeFrozen). The unit tests' single lwIP instance takes the clients'
+// PCBs from the pool that lwipopts.h sizes for the card alone; freezing lets a test hold every slot of a
+// service, plus one more client, without a second pool.
+struct FrozenTcpClient {
+  std::uint16_t client_port = 0;
+  std::uint16_t card_port = 0;
+  std::uint32_t next_sent = 0;      // the next sequence number the client sends
+  std::uint32_t next_expected = 0;  // the next sequence number expected from the card
+};
+
 class LwipPairTest : public ::testing::Test {
  protected:
   LwipPairTest() { hal::test::EnsureLwipInitialised(); }
@@ -151,6 +164,38 @@ class LwipPairTest : public ::testing::Test {
     Pump();
   }
 
+  // Freezes a connected client that has nothing of its own unacknowledged: acknowledges what it received,
+  // then releases its PCB without telling the card.
+  FrozenTcpClient Freeze(TcpTestClient& client) {
+    tcp_pcb* pcb = client.pcb;
+    EXPECT_NE(pcb, nullptr);
+    if (pcb == nullptr) return {};
+    tcp_ack_now(pcb);
+    EXPECT_EQ(tcp_output(pcb), ERR_OK);
+    Pump();
+    EXPECT_EQ(pcb->unsent, nullptr);
+    EXPECT_EQ(pcb->unacked, nullptr);
+    const FrozenTcpClient frozen{pcb->local_port, pcb->remote_port, pcb->snd_nxt, pcb->rcv_nxt};
+    tcp_arg(pcb, nullptr);
+    tcp_err(pcb, nullptr);
+    tcp_recv(pcb, nullptr);
+    tcp_abandon(pcb, 0);
+    client.pcb = nullptr;
+    return frozen;
+  }
+
+  // Sends `payload` on a frozen connection and returns every byte the card answers with (acknowledged, so
+  // nothing is left to retransmit). Other traffic is carried as Pump() carries it.
+  Bytes ExchangeFrozen(FrozenTcpClient& frozen, const Bytes& payload) {
+    card_port_.Inject(FrozenSegment(frozen, kTcpPush | kTcpAck, payload));
+    frozen.next_sent += static_cast<std::uint32_t>(payload.size());
+    Bytes received;
+    PumpFrozen(frozen, received);
+    card_port_.Inject(FrozenSegment(frozen, kTcpAck, {}));
+    PumpFrozen(frozen, received);
+    return received;
+  }
+
   UdpTestPeer& OpenUdp(std::uint16_t local_port) {
     udp_peers_.push_back(std::make_unique<UdpTestPeer>());
     UdpTestPeer& peer = *udp_peers_.back();
@@ -176,6 +221,96 @@ class LwipPairTest : public ::testing::Test {
   }
 
   static hal::test::FakeClock& clock() { return hal::test::LwipTestClock(); }
+
+ private:
+  static constexpr std::uint8_t kTcpFin = 0x01;
+  static constexpr std::uint8_t kTcpPush = 0x08;
+  static constexpr std::uint8_t kTcpAck = 0x10;
+  static constexpr std::size_t kEthernetHeader = 14;
+
+  static std::uint16_t Checksum(std::uint32_t sum, const std::uint8_t* bytes, std::size_t size) {
+    for (std::size_t i = 0; i + 1 < size; i += 2) sum += static_cast<std::uint32_t>(bytes[i] << 8 | bytes[i + 1]);
+    if (size % 2 != 0) sum += static_cast<std::uint32_t>(bytes[size - 1] << 8);
+    while (sum > 0xFFFF) sum = (sum & 0xFFFF) + (sum >> 16);
+    return static_cast<std::uint16_t>(~sum & 0xFFFF);
+  }
+  static void Put16(Bytes& out, std::size_t at, std::uint32_t value) {
+    out[at] = static_cast<std::uint8_t>(value >> 8);
+    out[at + 1] = static_cast<std::uint8_t>(value);
+  }
+  static void Put32(Bytes& out, std::size_t at, std::uint32_t value) {
+    Put16(out, at, value >> 16);
+    Put16(out, at + 2, value & 0xFFFF);
+  }
+  static std::uint32_t Get32(const Bytes& in, std::size_t at) {
+    return static_cast<std::uint32_t>(in[at] << 24 | in[at + 1] << 16 | in[at + 2] << 8 | in[at + 3]);
+  }
+
+  // An Ethernet/IPv4/TCP frame from the peer to the card on a frozen connection.
+  Bytes FrozenSegment(const FrozenTcpClient& frozen, std::uint8_t flags, const Bytes& payload) {
+    const std::size_t tcp_length = 20 + payload.size();
+    Bytes frame(kEthernetHeader + 20 + tcp_length, 0);
+    const netif& card = card_netif_.lwip_netif();
+    const netif& peer = peer_netif_.lwip_netif();
+    std::copy(card.hwaddr, card.hwaddr + 6, frame.begin());
+    std::copy(peer.hwaddr, peer.hwaddr + 6, frame.begin() + 6);
+    Put16(frame, 12, 0x0800);
+    const std::size_t ip = kEthernetHeader;
+    frame[ip] = 0x45;
+    Put16(frame, ip + 2, static_cast<std::uint32_t>(20 + tcp_length));
+    frame[ip + 8] = 64;
+    frame[ip + 9] = 6;
+    Put32(frame, ip + 12, kPeerIp);
+    Put32(frame, ip + 16, kCardIp);
+    Put16(frame, ip + 10, Checksum(0, frame.data() + ip, 20));
+    const std::size_t tcp = ip + 20;
+    Put16(frame, tcp, frozen.client_port);
+    Put16(frame, tcp + 2, frozen.card_port);
+    Put32(frame, tcp + 4, frozen.next_sent);
+    Put32(frame, tcp + 8, frozen.next_expected);
+    frame[tcp + 12] = 5 << 4;
+    frame[tcp + 13] = flags;
+    Put16(frame, tcp + 14, TCP_WND);
+    std::copy(payload.begin(), payload.end(), frame.begin() + static_cast<long>(tcp + 20));
+    const std::uint32_t pseudo = (kPeerIp >> 16) + (kPeerIp & 0xFFFF) + (kCardIp >> 16) + (kCardIp & 0xFFFF) + 6 +
+                                 static_cast<std::uint32_t>(tcp_length);
+    Put16(frame, tcp + 16, Checksum(pseudo, frame.data() + tcp, tcp_length));
+    return frame;
+  }
+
+  // Pump(), except that the card's segments of the frozen connection are kept (their data appended to
+  // `received`) instead of reaching the peer's lwIP, which would answer them with RST.
+  void PumpFrozen(FrozenTcpClient& frozen, Bytes& received) {
+    for (int round = 0; round < 200; ++round) {
+      PollServices();
+      std::size_t moved = card_netif_.PumpReceive(64);
+      for (auto& sent : card_port_.sent()) {
+        ++moved;
+        const Bytes& f = sent.bytes;
+        const std::size_t ip = kEthernetHeader;
+        const bool frozen_segment = f.size() >= ip + 40 && f[12] == 0x08 && f[13] == 0x00 && f[ip + 9] == 6 &&
+                                    (f[ip + 20 + 2] << 8 | f[ip + 20 + 3]) == frozen.client_port &&
+                                    (f[ip + 20] << 8 | f[ip + 21]) == frozen.card_port;
+        if (!frozen_segment) {
+          peer_port_.Inject(std::move(sent.bytes));
+          continue;
+        }
+        const std::size_t ip_length = static_cast<std::size_t>(f[ip + 2] << 8 | f[ip + 3]);
+        const std::size_t tcp = ip + static_cast<std::size_t>((f[ip] & 0x0F) * 4);
+        const std::size_t data = tcp + static_cast<std::size_t>((f[tcp + 12] >> 4) * 4);
+        const std::size_t end = ip + ip_length;
+        if (Get32(f, tcp + 4) != frozen.next_expected || end < data) continue;  // a retransmission
+        received.insert(received.end(), f.begin() + static_cast<long>(data), f.begin() + static_cast<long>(end));
+        frozen.next_expected += static_cast<std::uint32_t>(end - data) + ((f[tcp + 13] & kTcpFin) != 0 ? 1 : 0);
+      }
+      card_port_.sent().clear();
+      moved += Carry(peer_port_, card_port_) + peer_netif_.PumpReceive(64);
+      if (moved == 0) return;
+    }
+    FAIL() << "traffic did not settle";
+  }
+
+ protected:
 
   hal::test::FakeFramePort peer_port_{kPeerMac};
   hal::test::FakeFramePort card_port_{kCardMac};

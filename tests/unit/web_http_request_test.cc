@@ -122,5 +122,37 @@ TEST(WebHttpRequestTest, LimitsAndUnsupportedFeatures) {
   EXPECT_EQ(Parse("GET / HTTP/1.1\r\nHost: a\r\nX: vvv", request).state, ParseState::kIncomplete);
 }
 
+TEST(WebHttpRequestTest, BodyAndHeaderBlockAtTheirExactLimits) {
+  HttpRequest request;
+  // A body of kMaxBody (512) bytes is taken; one more byte is 413, as soon as the header says so.
+  const std::string body(kMaxBody, 'b');
+  const std::string post = "POST /api/x HTTP/1.1\r\nHost: a\r\nContent-Length: 512\r\n\r\n" + body;
+  const ParseResult largest = Parse(post, request);
+  ASSERT_EQ(largest.state, ParseState::kComplete);
+  EXPECT_EQ(request.body.size(), 512U);
+  EXPECT_EQ(largest.consumed, post.size());
+  EXPECT_EQ(ErrorOf("POST /api/x HTTP/1.1\r\nHost: a\r\nContent-Length: 513\r\n\r\n"), HttpStatus::kPayloadTooLarge);
+
+  // A header block (request line, headers and the blank line) of exactly kMaxHeaderBlock (2048) bytes is
+  // taken; one byte more is 431.
+  const std::string prefix = "GET / HTTP/1.1\r\nHost: a\r\nX: ";
+  const std::string at_limit = prefix + std::string(kMaxHeaderBlock - prefix.size() - 4, 'v') + "\r\n\r\n";
+  ASSERT_EQ(at_limit.size(), 2048U);
+  const ParseResult block = Parse(at_limit, request);
+  ASSERT_EQ(block.state, ParseState::kComplete);
+  EXPECT_EQ(block.consumed, 2048U);
+  const std::string beyond = prefix + std::string(kMaxHeaderBlock - prefix.size() - 3, 'v') + "\r\n\r\n";
+  EXPECT_EQ(ErrorOf(beyond), HttpStatus::kHeaderFieldsTooLarge);
+
+  // The request line: 512 bytes (without its CRLF) are taken, 513 are 414.
+  const std::string line = "GET /" + std::string(kMaxRequestLine - std::string_view("GET / HTTP/1.1").size(), 'p') +
+                           " HTTP/1.1";
+  ASSERT_EQ(line.size(), 512U);
+  EXPECT_EQ(Parse(line + "\r\nHost: a\r\n\r\n", request).state, ParseState::kComplete);
+  const std::string longer = "GET /" + std::string(kMaxRequestLine + 1 - std::string_view("GET / HTTP/1.1").size(), 'p') +
+                             " HTTP/1.1";
+  EXPECT_EQ(ErrorOf(longer + "\r\nHost: a\r\n\r\n"), HttpStatus::kUriTooLong);
+}
+
 }  // namespace
 }  // namespace web

@@ -155,15 +155,28 @@ class ScriptedHandler final : public HttpHandler {
       response.BodyText(std::string(kHttpResponseBufferBytes, 'x'));
       return HandlerResult::kDone;
     }
+    if (request.path == "/fill") {
+      // The whole response buffer, to the byte: `fill` body bytes after the head.
+      response.Start(HttpStatus::kOk);
+      response.BodyText(std::string(fill, 'f'));
+      return HandlerResult::kDone;
+    }
+    if (request.path == "/asset") {
+      response.Start(HttpStatus::kOk);
+      response.ExternalBody(std::span<const std::uint8_t>(kAsset.data(), kAsset.size()));
+      return HandlerResult::kDone;
+    }
     response.Start(HttpStatus::kNotFound);
     return HandlerResult::kDone;
   }
   void OnClientClosed(HttpClientId client) override { closed_pending = client; }
   hal::Micros NextDeadline() const override { return release ? 0 : hal::kNever; }
 
+  static constexpr std::array<std::uint8_t, 5> kAsset = {'a', 's', 's', 'e', 't'};
   int calls = 0;
   bool release = false;
   int closed_pending = -1;
+  std::size_t fill = 0;
 };
 
 class WebHttpServerTest : public ::testing::Test {
@@ -292,14 +305,16 @@ TEST_F(WebHttpServerTest, SlowRequestTimesOutWith408AndIdleConnectionsClose) {
 }
 
 TEST_F(WebHttpServerTest, WindowReopensWhileTheBufferCanStillTakeAWholeWindow) {
-  constexpr std::size_t kWindow = 2920;
+  constexpr std::size_t kWindow = 536;  // lwIP's TCP_WND
   const HttpClientId id = OpenClient();
-  // A POST with a 4000-byte body: larger than one window, so the window must reopen before it is served.
-  const std::string head = "POST /ok HTTP/1.1\r\nHost: a\r\nContent-Length: 4000\r\n\r\n";
-  const std::string body(4000, 'b');
+  // A POST with a body at its limit (512 bytes): larger than one window with its head, so the window must
+  // reopen before it is served.
+  const std::string head = "POST /ok HTTP/1.1\r\nHost: a\r\nContent-Length: 512\r\n\r\n";
+  const std::string body(kMaxBody, 'b');
   const std::string request = head + body;
+  ASSERT_GT(request.size(), kWindow);
   server.Receive(id, Bytes(std::string_view(request).substr(0, kWindow)), now);
-  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), kWindow);  // 8192 - 2920 free: a window still fits
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), kWindow);  // 2832 - 536 free: a window still fits
   server.Receive(id, Bytes(std::string_view(request).substr(kWindow)), now);
   EXPECT_EQ(server.TakeReleasedInput(id, kWindow), request.size() - kWindow);
   EXPECT_EQ(Drain(id), "HTTP/1.1 200 OK\r\nContent-Length: 3\r\nConnection: keep-alive\r\n\r\nok0");
@@ -307,16 +322,130 @@ TEST_F(WebHttpServerTest, WindowReopensWhileTheBufferCanStillTakeAWholeWindow) {
 }
 
 TEST_F(WebHttpServerTest, WindowStaysShutWhenTheBufferIsNearlyFull) {
-  constexpr std::size_t kWindow = 2920;
+  constexpr std::size_t kWindow = 536;  // lwIP's TCP_WND
   const HttpClientId id = OpenClient();
   // Held: a pending request, and pipelined bytes behind it.
-  const std::string later = "GET /later HTTP/1.1\r\nHost: a\r\nX: " + std::string(3000, 'y') + "\r\n\r\n";
+  const std::string later = "GET /later HTTP/1.1\r\nHost: a\r\nX: " + std::string(1500, 'y') + "\r\n\r\n";
   server.Receive(id, Bytes(later), now);
   EXPECT_EQ(server.TakeReleasedInput(id, kWindow), later.size());
-  server.Receive(id, Bytes(std::string(2500, 'z')), now);
-  // 8192 - 5544 free = 2648 < a window: only what keeps a window's room may be released.
-  const std::size_t free_space = kHttpReceiveBufferBytes - later.size() - 2500;
-  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), 2500 - (kWindow - free_space));
+  server.Receive(id, Bytes(std::string(1000, 'z')), now);
+  // 2832 - 2537 free = 295 < a window: only what keeps a window's room may be released.
+  const std::size_t free_space = kHttpReceiveBufferBytes - later.size() - 1000;
+  ASSERT_EQ(free_space, 295U);
+  EXPECT_EQ(server.TakeReleasedInput(id, kWindow), 1000 - (kWindow - free_space));
+}
+
+// --- Response buffers (shared by the connections) --------------------------------------------------
+
+// The head of a 200 answer with a body of `body` bytes on a keep-alive connection.
+std::string OkHead(std::size_t body) {
+  return "HTTP/1.1 200 OK\r\nContent-Length: " + std::to_string(body) + "\r\nConnection: keep-alive\r\n\r\n";
+}
+
+TEST_F(WebHttpServerTest, AnAnswerFillingTheResponseBufferExactlyIsSentOneMoreByteIs500) {
+  static_assert(kHttpResponseBuffers == 1);
+  const std::size_t head = OkHead(4000).size();
+  handler.fill = kHttpResponseBufferBytes - head;
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /fill HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  const std::string answer = Drain(id);
+  EXPECT_EQ(answer.size(), kHttpResponseBufferBytes);
+  EXPECT_EQ(answer, OkHead(handler.fill) + std::string(handler.fill, 'f'));
+  EXPECT_FALSE(server.MustClose(id));
+  ++handler.fill;
+  server.Receive(id, Bytes("GET /fill HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(Drain(id), "HTTP/1.1 500 Internal Server Error\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
+  EXPECT_TRUE(server.MustClose(id));
+  EXPECT_EQ(server.counters().overflows, 1U);
+}
+
+TEST_F(WebHttpServerTest, AnAnswerWaitsWhileAnotherHoldsTheResponseBuffer) {
+  handler.fill = 2000;
+  const HttpClientId first = OpenClient();
+  const HttpClientId second = OpenClient();
+  server.Receive(first, Bytes("GET /fill HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  ASSERT_FALSE(server.PendingOutput(first).empty());
+  // The transport takes only part of the first answer (its send buffer is full): the buffer stays taken.
+  server.ConsumeOutput(first, 1000, now);
+  server.Receive(second, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_TRUE(server.PendingOutput(second).empty());
+  EXPECT_EQ(server.counters().response_waits, 1U);
+  EXPECT_EQ(server.response_pool(), (base::PoolStats{1, kHttpResponseBuffers, 1, 1}));
+  EXPECT_EQ(server.NextDeadline(), now + kRequestTimeout);  // nothing to do until the first answer leaves
+  server.Poll(now + 1);
+  EXPECT_TRUE(server.PendingOutput(second).empty());
+  EXPECT_EQ(server.counters().response_waits, 1U);  // counted once per answer
+  // The rest of the first answer goes to TCP: the buffer is free and the second answer is due at once.
+  const std::string rest = Drain(first);
+  EXPECT_EQ(rest.size(), OkHead(2000).size() + 2000 - 1000);
+  EXPECT_EQ(server.response_pool().used, 0U);
+  EXPECT_EQ(server.NextDeadline(), 0);
+  server.Poll(now + 2);
+  EXPECT_EQ(Drain(second), OkHead(3) + "ok1");
+  EXPECT_EQ(server.response_pool(), (base::PoolStats{0, kHttpResponseBuffers, 1, 1}));
+}
+
+TEST_F(WebHttpServerTest, AnAnswerLeftInTheBufferForTheRequestTimeoutClosesItsConnection) {
+  handler.fill = 2000;
+  const HttpClientId stuck = OpenClient();
+  const HttpClientId other = OpenClient();
+  server.Receive(stuck, Bytes("GET /fill HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  server.Receive(other, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_TRUE(server.PendingOutput(other).empty());
+  server.Poll(now + kRequestTimeout - 1);
+  EXPECT_FALSE(server.MustClose(stuck));
+  server.Poll(now + kRequestTimeout);
+  EXPECT_TRUE(server.MustClose(stuck));
+  EXPECT_EQ(server.counters().answer_timeouts, 1U);
+  server.Close(stuck);  // what the transport does when MustClose says so
+  EXPECT_EQ(server.NextDeadline(), 0);
+  server.Poll(now + kRequestTimeout + 1);
+  EXPECT_EQ(Drain(other), OkHead(3) + "ok1");
+}
+
+TEST_F(WebHttpServerTest, AnAssetHoldsTheResponseBufferOnlyForItsHead) {
+  const HttpClientId asset = OpenClient();
+  const HttpClientId other = OpenClient();
+  server.Receive(asset, Bytes("GET /asset HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  const std::span<const std::uint8_t> head = server.PendingOutput(asset);
+  EXPECT_EQ(Text(head), OkHead(5));
+  server.ConsumeOutput(asset, head.size(), now);
+  // The body is sent from where it is: the buffer is free while it goes.
+  EXPECT_TRUE(server.PendingOutputIsStatic(asset));
+  EXPECT_EQ(server.response_pool().used, 0U);
+  server.Receive(other, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(Drain(other), OkHead(3) + "ok1");
+  EXPECT_EQ(Drain(asset), "asset");
+  EXPECT_EQ(server.counters().response_waits, 0U);
+}
+
+TEST_F(WebHttpServerTest, AnErrorAnswerWaitsForTheResponseBufferToo) {
+  handler.fill = 2000;
+  const HttpClientId holder = OpenClient();
+  const HttpClientId bad = OpenClient();
+  server.Receive(holder, Bytes("GET /fill HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  server.Receive(bad, Bytes("GET /ok HTTP/2.0\r\nHost: a\r\n\r\n"), now);
+  EXPECT_TRUE(server.PendingOutput(bad).empty());
+  EXPECT_EQ(server.counters().parse_errors, 0U);
+  Drain(holder);
+  server.Poll(now + 1);
+  EXPECT_EQ(Drain(bad),
+            "HTTP/1.1 505 HTTP Version Not Supported\r\nContent-Type: application/json\r\nContent-Length: 38\r\n"
+            "Connection: close\r\n\r\n{\"error\":\"HTTP Version Not Supported\"}");
+  EXPECT_EQ(server.counters().parse_errors, 1U);
+  EXPECT_TRUE(server.MustClose(bad));
+}
+
+TEST_F(WebHttpServerTest, APendingAnswerHoldsNoResponseBuffer) {
+  const HttpClientId later = OpenClient();
+  const HttpClientId other = OpenClient();
+  server.Receive(later, Bytes("GET /later HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(server.response_pool().used, 0U);
+  server.Receive(other, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(Drain(other), OkHead(3) + "ok1");
+  handler.release = true;
+  server.Poll(now + 1);
+  EXPECT_EQ(Drain(later), OkHead(6) + "later0");
 }
 
 }  // namespace

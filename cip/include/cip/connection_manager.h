@@ -50,9 +50,14 @@ namespace cip {
 // Forward_Open connection size is at most 511).
 inline constexpr std::size_t kMaxExplicitConnections = 6;
 inline constexpr std::size_t kMaxExplicitReply = 512;
-// The largest produced data (a Forward_Open T->O size of 511 = 2 bytes of sequence count + 509).
-inline constexpr std::size_t kMaxIoData = 509;
-inline constexpr std::size_t kMaxIoDatagram = 20 + kMaxIoData;
+// The largest class 1 data the card exchanges (consumed or produced, without sequence count and run/idle
+// header): its largest assembly is 18 bytes (cip/drive kMaxAssemblySize, static_assert there); 32 leaves
+// room for a larger one. An application point needing more is refused 0x01 / 0x012A (consuming) or
+// 0x012B (producing); CIP's own bound would be 509 (T->O connection size 511).
+inline constexpr std::size_t kMaxIoData = 32;
+// The largest class 1 datagram: CPF with the sequenced address and data items (18 bytes), sequence count
+// (2), run/idle header (O->T, 4) and the data. Longer datagrams on UDP 2222 are dropped and counted.
+inline constexpr std::size_t kMaxIoDatagram = 24 + kMaxIoData;
 
 struct ConnectionManagerOptions {
   // RPIs (µs) outside [min_rpi, max_rpi] are refused with 0x0111 naming the limit (BEY-2: the floor

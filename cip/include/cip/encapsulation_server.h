@@ -12,8 +12,8 @@
 //
 // Decisions (docs/ethernetip.md lists them with their reasons):
 // - At most kMaxSessions sessions; the 9th RegisterSession gets 0x0002 and changes nothing else. Up to
-//   kMaxTcpConnections TCP connections, so that connections beyond the session limit still get that
-//   answer (and can use ListIdentity) instead of a reset.
+//   kMaxTcpConnections (one more than sessions) TCP connections, so that a connection beyond the session
+//   limit still gets that answer (and can use ListIdentity) instead of a reset.
 // - One session per TCP connection; a second RegisterSession on it gets 0x0001 with the existing handle.
 // - Session handles are random, non-zero and unique, and valid only on the connection that registered
 //   them: anything else gets 0x0064.
@@ -41,7 +41,10 @@
 namespace cip {
 
 inline constexpr std::size_t kMaxSessions = 8;
-inline constexpr std::size_t kMaxTcpConnections = kMaxSessions + 2;
+// One more than sessions: room to answer one client too many 0x0002 (lwipopts.h IPE_ENIP_TCP_CONNECTIONS).
+// Each connection costs its assembler (kMaxEncapsulationMessage), the binding's input buffer (TCP_WND),
+// a drive-access journal and a PCB: about 2 KB on the card.
+inline constexpr std::size_t kMaxTcpConnections = kMaxSessions + 1;
 // The TCP/IP object's default encapsulation inactivity timeout (its attribute 13, which the card does
 // not expose); lwIP's keepalive finds dead peers independently.
 inline constexpr hal::Micros kTcpInactivityTimeout = 120 * hal::kMicrosPerSecond;
@@ -54,6 +57,10 @@ inline constexpr hal::Micros kDefaultListIdentityMaxDelay = 2000 * hal::kMicrosP
 inline constexpr hal::Micros kMinListIdentityMaxDelay = 500 * hal::kMicrosPerMilli;
 // Every reply fits this many bytes (the lwIP binding must be able to queue one such reply).
 inline constexpr std::size_t kMaxReplyMessage = kMaxEncapsulationMessage;
+// Every reply on UDP fits this many bytes: the largest is ListIdentity with a 32-character product name
+// (24-byte header, item count 2, item type and length 4, identity item 34 + 32); ListServices is 46 bytes,
+// ListInterfaces 26, an error reply 24.
+inline constexpr std::size_t kMaxUdpReply = 96;
 
 // What the card says about itself in ListIdentity (the composition root builds it from the Identity
 // object and the TCP/IP interface).
@@ -180,7 +187,7 @@ class EncapsulationServer {
   std::array<Connection, kMaxTcpConnections> connections_{};
   std::array<DelayedReply, kMaxDelayedReplies> delayed_{};
   std::array<std::uint8_t, kMaxReplyMessage> tcp_reply_{};
-  std::array<std::uint8_t, kMaxReplyMessage> udp_reply_{};
+  std::array<std::uint8_t, kMaxUdpReply> udp_reply_{};
   base::PoolWatermark connection_marks_;
   base::PoolWatermark session_marks_;
   base::PoolWatermark delayed_marks_;

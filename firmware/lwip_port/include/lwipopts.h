@@ -21,29 +21,43 @@
  */
 
 /* IPE_MAX_ENIP_SESSIONS: concurrent EtherNet/IP encapsulation sessions, one TCP connection each
- * on port 44818. Class 3 (explicit) CIP connections ride on these TCP connections. */
+ * on port 44818 (cip::kMaxSessions). Class 3 (explicit) CIP connections ride on these TCP
+ * connections. ODVA recommends at least 3. */
 #define IPE_MAX_ENIP_SESSIONS 8
+
+/* IPE_ENIP_TCP_CONNECTIONS: TCP connections the encapsulation server serves on 44818
+ * (cip::kMaxTcpConnections): one per session plus one, so that a client beyond the session limit
+ * still gets RegisterSession's status 0x0002 (and ListIdentity) instead of a reset. Only the 8
+ * connections holding a session can carry CIP requests (and so large replies). */
+#define IPE_ENIP_TCP_CONNECTIONS (IPE_MAX_ENIP_SESSIONS + 1)
 
 /* IPE_MAX_CIP_CONNECTIONS: concurrent CIP connections (Class 1 implicit I/O and Class 3). Class 1
  * traffic uses a single UDP PCB on port 2222 whatever the number of connections, so this limit
- * costs lwIP no PCBs; it sizes the heap for produced (T->O) datagrams and the ARP table. */
+ * costs lwIP no PCBs. */
 #define IPE_MAX_CIP_CONNECTIONS 16
 
 /* IPE_MAX_MODBUS_CLIENTS: concurrent Modbus TCP client connections on port 502. */
 #define IPE_MAX_MODBUS_CLIENTS 8
 
-/* IPE_MAX_HTTP_CLIENTS: concurrent HTTP connections on port 80 (status/configuration pages). */
-#define IPE_MAX_HTTP_CLIENTS 4
+/* IPE_MAX_HTTP_CLIENTS: concurrent HTTP connections on port 80 (web::kMaxHttpClients): a browser
+ * loading the page fetches the stylesheet and the two scripts at once. */
+#define IPE_MAX_HTTP_CLIENTS 3
+
+/* IPE_PROTOCOL_TCP_CONNECTIONS: TCP connections of the card's fieldbus protocol. c500 selects ONE
+ * protocol: port 502 and port 44818 are never open at the same time (switching closes the other
+ * port and resets its connections), so the pools cover the larger of the two, not their sum. */
+#define IPE_PROTOCOL_TCP_CONNECTIONS \
+  (IPE_ENIP_TCP_CONNECTIONS > IPE_MAX_MODBUS_CLIENTS ? IPE_ENIP_TCP_CONNECTIONS : IPE_MAX_MODBUS_CLIENTS)
 
 /* IPE_TCP_CONNECTIONS: every TCP connection the card serves at its limits at the same time. */
-#define IPE_TCP_CONNECTIONS (IPE_MAX_ENIP_SESSIONS + IPE_MAX_MODBUS_CLIENTS + IPE_MAX_HTTP_CLIENTS)
+#define IPE_TCP_CONNECTIONS (IPE_PROTOCOL_TCP_CONNECTIONS + IPE_MAX_HTTP_CLIENTS)
 
 /* IPE_TCP_REFUSAL_HEADROOM: PCBs beyond the limits, so that one more client than allowed (the 9th
- * Modbus client, the 9th session, the 5th HTTP client) still completes its handshake, reaches the
- * accept callback and is refused cleanly (Modbus/ENIP/HTTP-level answer or RST) instead of its
- * SYN being dropped silently while the pool is exhausted. 4 = one per listener plus one spare, so
- * an over-limit client on every port at once is still refused cleanly. */
-#define IPE_TCP_REFUSAL_HEADROOM 4
+ * Modbus client, the 10th EtherNet/IP connection, the 4th busy HTTP client) still completes its
+ * handshake, reaches the accept callback and is refused cleanly (RST, or HTTP 503 then FIN) instead
+ * of its SYN being dropped silently while the pool is exhausted. 3 = one per open listening port
+ * (the protocol port and port 80) plus one spare. */
+#define IPE_TCP_REFUSAL_HEADROOM 3
 
 /* IPE_TCP_LISTENERS: listening PCBs: 502 (Modbus), 44818 (EtherNet/IP), 80 (HTTP). */
 #define IPE_TCP_LISTENERS 3
@@ -127,41 +141,75 @@
 #define MEM_ALIGNMENT 4
 #endif
 
-/* IPE_TCP_PEER_RESPONSE_BYTES: heap held by one unacknowledged EtherNet/IP or Modbus reply,
- * rounded up: an encapsulated CIP reply (< 600 bytes) or a Modbus ADU (<= 260 bytes), plus TCP/IP/
- * Ethernet headers and the heap's own block header. These protocols are request/response, so one
- * reply per connection is outstanding at a time. */
-#define IPE_TCP_PEER_RESPONSE_BYTES 1024
+/* IPE_HEAP_SEGMENT_OVERHEAD: heap one queued TCP segment (or outgoing UDP datagram) costs beyond
+ * its data, with TCP_OVERSIZE 0: the pbuf header (16 bytes on Cortex-M, 24 on a 64-bit host), room
+ * for the Ethernet, IPv4 and TCP headers (54, aligned to 56) and the heap block header (8): 80 on the
+ * card, 88 on the host. The larger is used, so the host runs with at most the card's margin. */
+#define IPE_HEAP_SEGMENT_OVERHEAD 88
 
-/* IPE_HEAP_TRANSIENT_BYTES: heap for frames that live only until the netif has copied them: a
- * produced Class 1 datagram, DHCP messages (up to 576 bytes), ARP/IGMP/ICMP replies, and the one
- * packet kept per unresolved ARP entry. */
-#define IPE_HEAP_TRANSIENT_BYTES 4096
+/* IPE_ENIP_REPLY_BYTES: the largest encapsulation reply, cip::kMaxReplyMessage (24-byte header +
+ * 600 bytes of data; a static_assert in eip_service.cc keeps them equal). 624 > TCP_MSS: two
+ * segments. */
+#define IPE_ENIP_REPLY_BYTES 624
+
+/* IPE_ENIP_SESSIONLESS_REPLY_BYTES: the largest reply a connection without a session can get: a
+ * ListIdentity reply (about 100 bytes with a 32-character product name); RegisterSession's 0x0002
+ * refusal and the error replies are 24-28 bytes. CIP requests need a session. */
+#define IPE_ENIP_SESSIONLESS_REPLY_BYTES 128
+
+/* IPE_MODBUS_ADU_BYTES: the largest Modbus TCP ADU, modbus::kMaxAduBytes (MBAP 7 + PDU 253). */
+#define IPE_MODBUS_ADU_BYTES 260
+
+/* IPE_MODBUS_UNACKED_BYTES: firmware::ModbusTcpService::kMaxUnacknowledgedBytes: what a Modbus
+ * client may have unacknowledged (two largest ADUs, in at most 2 segments). */
+#define IPE_MODBUS_UNACKED_BYTES (2 * IPE_MODBUS_ADU_BYTES)
+
+/* IPE_HEAP_ENIP / IPE_HEAP_MODBUS: heap for the replies of the protocol in use. EtherNet/IP and
+ * Modbus TCP are request/response: one largest reply in flight per session (in 2 segments), one
+ * small one on the connection beyond the sessions; for Modbus the binding's own limit (2 answers in
+ * 2 segments). A client that pipelines may have more in flight (up to TCP_SND_BUF); when the heap
+ * runs out, tcp_write fails and the binding keeps the reply and writes it on the next
+ * acknowledgement: nothing is lost, that client is only slowed down. */
+#define IPE_HEAP_ENIP                                                                               \
+  ((IPE_MAX_ENIP_SESSIONS * (IPE_ENIP_REPLY_BYTES + 2 * IPE_HEAP_SEGMENT_OVERHEAD)) +               \
+   ((IPE_ENIP_TCP_CONNECTIONS - IPE_MAX_ENIP_SESSIONS) * (IPE_ENIP_SESSIONLESS_REPLY_BYTES + IPE_HEAP_SEGMENT_OVERHEAD)))
+#define IPE_HEAP_MODBUS (IPE_MAX_MODBUS_CLIENTS * (IPE_MODBUS_UNACKED_BYTES + 2 * IPE_HEAP_SEGMENT_OVERHEAD))
+
+/* IPE_HEAP_HTTP: a full send buffer per HTTP client: TCP_SND_BUF bytes of a copied JSON answer in up
+ * to 4 segments (the head is copied too; asset bodies are referenced from flash and cost only their
+ * segment headers), plus 256 bytes for the busy client answered 503 from flash (one header pbuf). */
+#define IPE_HEAP_HTTP ((IPE_MAX_HTTP_CLIENTS * (TCP_SND_BUF + 4 * IPE_HEAP_SEGMENT_OVERHEAD)) + 256)
+
+/* IPE_HEAP_TRANSIENT_BYTES: heap for frames that live only until the netif has copied them: a DHCP
+ * message (548 bytes + headers, about 640), ACK/RST/ARP/IGMP frames (about 100 bytes each), UDP
+ * replies on 44818 (ListIdentity about 100 bytes; the two delayed broadcast replies), produced Class 1
+ * datagrams (under 64 bytes with the card's assemblies), and the one packet kept per unresolved ARP
+ * entry. (Received frames, also an ICMP echo answered in place, are in PBUF_POOL.) */
+#define IPE_HEAP_TRANSIENT_BYTES 2048
 
 /* MEM_SIZE: size of lwIP's heap (PBUF_RAM). It holds copied TCP send data (tcp_write with
- * TCP_WRITE_FLAG_COPY) until acknowledged and outgoing UDP/ICMP/IGMP/DHCP frames until sent:
- *   one outstanding reply per EtherNet/IP session and Modbus client,
- *   a full send buffer (TCP_SND_BUF + headers) per HTTP client,
- *   and transient frames. */
-#define MEM_SIZE                                                                   \
-  (((IPE_MAX_ENIP_SESSIONS + IPE_MAX_MODBUS_CLIENTS) * IPE_TCP_PEER_RESPONSE_BYTES) + \
-   (IPE_MAX_HTTP_CLIENTS * (TCP_SND_BUF + 512)) + IPE_HEAP_TRANSIENT_BYTES)
+ * TCP_WRITE_FLAG_COPY) until acknowledged and outgoing UDP/ICMP/IGMP/DHCP frames until sent: the
+ * replies of the protocol c500 selects (the larger share of the two), the HTTP clients' send
+ * buffers and transient frames. = 6616 + 4528 + 2048 = 13192 bytes. */
+#define MEM_SIZE                                                                         \
+  ((IPE_HEAP_ENIP > IPE_HEAP_MODBUS ? IPE_HEAP_ENIP : IPE_HEAP_MODBUS) + IPE_HEAP_HTTP + \
+   IPE_HEAP_TRANSIENT_BYTES)
 
 /* MEMP_NUM_PBUF: PBUF_ROM/PBUF_REF headers (pbufs pointing at data not owned by lwIP, e.g.
- * tcp_write without TCP_WRITE_FLAG_COPY of constant web content). Sized so every HTTP client can
- * have a full send queue of such references. */
-#define MEMP_NUM_PBUF (IPE_MAX_HTTP_CLIENTS * TCP_SND_QUEUELEN)
+ * tcp_write without TCP_WRITE_FLAG_COPY of constant web content). Sized so every HTTP client and the
+ * busy one answered 503 can have a full send queue of such references. */
+#define MEMP_NUM_PBUF ((IPE_MAX_HTTP_CLIENTS + 1) * TCP_SND_QUEUELEN)
 
 /* MEMP_NUM_UDP_PCB: UDP PCBs: the IPE_UDP_PCBS_USED above plus 3 spare (e.g. a separate PCB for
  * multicast Class 1 production with its own TTL, a BOOTP/SNTP-style helper, a test hook). */
 #define MEMP_NUM_UDP_PCB (IPE_UDP_PCBS_USED + 3)
 
-/* MEMP_NUM_TCP_PCB: active TCP PCBs = 8 sessions + 8 Modbus + 4 HTTP + IPE_TCP_REFUSAL_HEADROOM
- * (= 24). TIME_WAIT needs no slots of its own: when the pool is empty, tcp_alloc() reclaims the
- * oldest TIME_WAIT PCB (then LAST_ACK, then CLOSING) before giving up, so connections closed by
- * the card (which enter TIME_WAIT for 2*TCP_MSL) never block a new client. A new connection never
- * evicts a live one of the same or higher priority (tcp_setprio), so keep all listeners at the
- * same priority. */
+/* MEMP_NUM_TCP_PCB: active TCP PCBs = 9 EtherNet/IP connections (or 8 Modbus clients) + 3 HTTP +
+ * IPE_TCP_REFUSAL_HEADROOM (= 15). TIME_WAIT needs no slots of its own: when the pool is empty,
+ * tcp_alloc() reclaims the oldest TIME_WAIT PCB (then LAST_ACK, then CLOSING) before giving up, so
+ * connections closed by the card (which enter TIME_WAIT for 2*TCP_MSL) never block a new client. A
+ * new connection never evicts a live one of the same or higher priority (tcp_setprio), so keep all
+ * listeners at the same priority. */
 #define MEMP_NUM_TCP_PCB (IPE_TCP_CONNECTIONS + IPE_TCP_REFUSAL_HEADROOM)
 
 /* MEMP_NUM_TCP_PCB_LISTEN: listening PCBs: 502, 44818, 80, plus 1 spare. */
@@ -169,9 +217,10 @@
 
 /* MEMP_NUM_TCP_SEG: TCP segments queued for sending or awaiting acknowledgement, all connections
  * together. Request/response connections (sessions, Modbus) have one reply outstanding, at most
- * 2 segments; an HTTP client may fill its whole send queue (TCP_SND_QUEUELEN). */
+ * 2 segments; an HTTP client, and the busy one, may fill its whole send queue (TCP_SND_QUEUELEN).
+ * Exhausted (a pipelining client), tcp_write fails and the reply waits in the binding. */
 #define MEMP_NUM_TCP_SEG \
-  (((IPE_MAX_ENIP_SESSIONS + IPE_MAX_MODBUS_CLIENTS) * 2) + (IPE_MAX_HTTP_CLIENTS * TCP_SND_QUEUELEN))
+  ((IPE_PROTOCOL_TCP_CONNECTIONS * 2) + ((IPE_MAX_HTTP_CLIENTS + 1) * TCP_SND_QUEUELEN))
 
 /* MEMP_NUM_IGMP_GROUP: IGMP group entries: 224.0.0.1 (all-systems, always joined while
  * NETIF_FLAG_IGMP is set) plus IPE_MULTICAST_GROUPS. lwIP requires > 1. */
@@ -182,16 +231,21 @@
  * computed by opt.h from the options, so it follows them) plus IPE_APP_SYS_TIMEOUTS. */
 #define MEMP_NUM_SYS_TIMEOUT (LWIP_NUM_SYS_TIMEOUT_INTERNAL + IPE_APP_SYS_TIMEOUTS)
 
-/* PBUF_POOL_BUFSIZE: size of one receive pbuf: one full frame (TCP_MSS + 40 bytes of IP/TCP
- * headers + 14 bytes Ethernet header), so a received frame is never a chain. Aligned. */
+/* PBUF_POOL_BUFSIZE: size of one receive pbuf: one full TCP segment (TCP_MSS + 40 bytes of IP/TCP
+ * headers + 14 bytes Ethernet header = 590, aligned: 592), so TCP data is never a chain. Longer
+ * frames (UDP datagrams up to 1514 bytes, e.g. a DHCP offer or broadcast traffic) are a chain of up
+ * to 3: card_netif.cc allocates PBUF_POOL chains and every consumer copies with pbuf_copy_partial or
+ * walks the chain. */
 #define PBUF_POOL_BUFSIZE LWIP_MEM_ALIGN_SIZE(TCP_MSS + 40 + PBUF_LINK_ENCAPSULATION_HLEN + PBUF_LINK_HLEN)
 
-/* PBUF_POOL_SIZE: receive pbufs. A received frame is normally freed before the next one is read
- * (the event loop hands frames to lwIP one at a time and the firmware consumes TCP data in its
- * recv callback), so this only has to cover data a recv callback refuses (ERR_MEM, kept as
- * refused_data), a burst of frames the netif driver queues before lwIP runs, and lwIP's check
- * that TCP_WND fits in the pool. 16 frames = about 24 KiB. */
-#define PBUF_POOL_SIZE 16
+/* PBUF_POOL_SIZE: receive pbufs. The event loop hands frames to lwIP one at a time and every service
+ * copies TCP and UDP data out in its callback and frees the pbuf (no recv callback refuses data,
+ * TCP_QUEUE_OOSEQ is 0, IP_REASSEMBLY is 0), so a frame is freed before the next one is read. 8 =
+ * one longest frame (3 pbufs) being processed plus 5 held elsewhere: an ICMP echo or other reply
+ * waiting in the ARP table for its peer's address (one per entry), a frame the netif driver has
+ * queued. About 4.7 KiB. When the pool is empty a received frame is dropped and counted
+ * (rx_dropped_no_pbuf); TCP retransmits it. */
+#define PBUF_POOL_SIZE 8
 
 /* MEMP_OVERFLOW_CHECK / MEMP_SANITY_CHECK: 0 = no pool guard bytes; AddressSanitizer does not see
  * inside lwIP's static pools, set these to 1 temporarily when chasing pool corruption. */
@@ -219,7 +273,7 @@
 #define ARP_TABLE_SIZE (IPE_TCP_CONNECTIONS + 4)
 
 /* ARP_QUEUEING: 0 = while a peer's MAC is unresolved only its most recent outgoing packet is kept
- * (copied to the heap) and sent when the reply arrives. Request/response protocols have one
+ * (referenced: a heap or pool pbuf stays allocated until then) and sent when the reply arrives. Request/response protocols have one
  * packet in flight per peer, TCP retransmits anyway, and no MEMP_NUM_ARP_QUEUE pool is needed. */
 #define ARP_QUEUEING 0
 
@@ -307,21 +361,38 @@
 /* LWIP_TCP: 1 = TCP (EtherNet/IP sessions, Modbus TCP, HTTP). */
 #define LWIP_TCP 1
 
-/* TCP_MSS: 1460 = 1500-byte Ethernet MTU minus 40 bytes of IPv4 and TCP headers. */
-#define TCP_MSS 1460
+/* TCP_MSS: 536, the IPv4 default MSS (RFC 879/1122) that every host accepts, and lwIP's own default.
+ * The card's TCP traffic is small request/response messages (a Modbus ADU is at most 260 bytes, an
+ * encapsulated CIP message at most 624) and a 22 KiB web page; a segment of 536 costs a receive pbuf of
+ * 592 bytes instead of 1520 and keeps TCP_WND, TCP_SND_BUF and the heap small. The web page takes
+ * about 45 segments instead of 16: a few milliseconds more on a LAN. */
+#define TCP_MSS 536
 
-/* TCP_WND: receive window, 2 * TCP_MSS. Requests to the card are small (Modbus ADU <= 260 bytes,
- * encapsulated CIP requests < 600 bytes, HTTP requests of a few hundred bytes) and are consumed
- * in the recv callback, so a larger window would only let a peer tie up more receive pbufs. */
-#define TCP_WND (2 * TCP_MSS)
+/* TCP_WND: receive window, one TCP_MSS (536). Each binding copies received bytes into a buffer of
+ * its own of at least TCP_WND bytes (static_asserts in the bindings: Modbus 536, EtherNet/IP 536,
+ * HTTP a whole request) and reopens the window only by bytes it has consumed, so nothing is ever
+ * refused back to lwIP and no receive pbuf stays with a connection. It must cover one largest
+ * Modbus ADU twice over: lwIP reopens a window only in steps of TCP_WND / 2 (silly window
+ * avoidance, tcp_update_rcv_ann_wnd), so a buffer holding a partial 260-byte ADU must still free
+ * TCP_WND / 2 by answering the complete ADUs before it (536 - 259 = 277 >= 268). An EtherNet/IP
+ * message longer than the window arrives in several windows (the assembler keeps it). */
+#define TCP_WND TCP_MSS
 
-/* TCP_SND_BUF: send buffer per connection, 2 * TCP_MSS (lwIP's minimum for smooth operation).
- * Replies fit in one segment; HTTP pages are streamed from the tcp_sent callback. */
+/* TCP_SND_BUF: send buffer per connection, 2 * TCP_MSS (= 1072, lwIP's minimum for smooth
+ * operation). The bindings feed a request/response core only while its largest answer fits (Modbus
+ * also limits itself to 2 answers unacknowledged); HTTP answers are streamed from the tcp_sent
+ * callback. */
 #define TCP_SND_BUF (2 * TCP_MSS)
 
 /* TCP_SND_QUEUELEN: pbufs queued for sending per connection; lwIP's formula (4 * TCP_SND_BUF /
  * TCP_MSS, rounded up) = 8, at least the 2 * TCP_SND_BUF / TCP_MSS lwIP requires. */
 #define TCP_SND_QUEUELEN ((4 * (TCP_SND_BUF) + (TCP_MSS - 1)) / (TCP_MSS))
+
+/* TCP_OVERSIZE: 0 = tcp_write allocates exactly the bytes written. lwIP's default (TCP_MSS) rounds
+ * every copied write up to a whole segment so that later writes can be appended: a 12-byte Modbus
+ * answer would hold 536 bytes of heap until acknowledged, and the heap shares above assume exact
+ * allocation. The card's writes are whole answers, so there is little to append anyway. */
+#define TCP_OVERSIZE 0
 
 /* TCP_QUEUE_OOSEQ: 0 = out-of-order segments are dropped instead of queued; the peer retransmits.
  * On a switched LAN reordering is rare, and queued segments would hold receive pbufs. */
@@ -434,8 +505,12 @@
  * ================================================================================================
  */
 
-#if MEMP_NUM_TCP_PCB < (IPE_MAX_ENIP_SESSIONS + IPE_MAX_MODBUS_CLIENTS + IPE_MAX_HTTP_CLIENTS + 1)
-#error "MEMP_NUM_TCP_PCB must cover every session, Modbus and HTTP client plus one to refuse"
+#if MEMP_NUM_TCP_PCB < (IPE_ENIP_TCP_CONNECTIONS + IPE_MAX_HTTP_CLIENTS + 2) || \
+    MEMP_NUM_TCP_PCB < (IPE_MAX_MODBUS_CLIENTS + IPE_MAX_HTTP_CLIENTS + 2)
+#error "MEMP_NUM_TCP_PCB must cover the protocol's and the HTTP clients plus one to refuse on each port"
+#endif
+#if IPE_ENIP_TCP_CONNECTIONS <= IPE_MAX_ENIP_SESSIONS
+#error "IPE_ENIP_TCP_CONNECTIONS must exceed the sessions, or the 9th RegisterSession gets a reset, not 0x0002"
 #endif
 #if IPE_TCP_REFUSAL_HEADROOM < 1
 #error "IPE_TCP_REFUSAL_HEADROOM must be >= 1 or an over-limit client cannot be refused cleanly"
@@ -461,8 +536,14 @@
 #if TCP_WND > (PBUF_POOL_SIZE * TCP_MSS)
 #error "PBUF_POOL_SIZE too small to hold a full TCP_WND of received data"
 #endif
-#if MEM_SIZE < ((IPE_MAX_ENIP_SESSIONS + IPE_MAX_MODBUS_CLIENTS + IPE_MAX_HTTP_CLIENTS) * 600)
-#error "MEM_SIZE too small for one reply per TCP connection"
+#if (TCP_WND - (IPE_MODBUS_ADU_BYTES - 1)) < (TCP_WND / 2)
+#error "TCP_WND too small: a window holding a partial Modbus ADU could never reopen (see TCP_WND)"
+#endif
+#if MEM_SIZE < ((IPE_MAX_ENIP_SESSIONS * IPE_ENIP_REPLY_BYTES) + (IPE_MAX_HTTP_CLIENTS * TCP_SND_BUF))
+#error "MEM_SIZE too small for one reply per session and a send buffer per HTTP client"
+#endif
+#if TCP_OVERSIZE != 0
+#error "the heap shares assume exact allocation (TCP_OVERSIZE 0)"
 #endif
 #if (MEM_ALIGNMENT & (MEM_ALIGNMENT - 1)) != 0 || MEM_ALIGNMENT < 4
 #error "MEM_ALIGNMENT must be a power of two, at least 4"

@@ -31,8 +31,11 @@
 
 namespace modbus {
 
-// lwIP's TCP_WND (2 x 1460): the binding checks that the window never exceeds it.
-inline constexpr std::size_t kReceiveBufferBytes = 2920;
+// lwIP's TCP_WND (536, one TCP_MSS): the binding checks that the window never exceeds it, and that a
+// buffer holding a partial largest ADU (259 bytes) can still free the half window lwIP needs before it
+// reopens the window (536 - 259 >= 268). A pipelining client may have about two largest ADUs, or 44
+// 12-byte requests, waiting; then its window is closed until requests are answered.
+inline constexpr std::size_t kReceiveBufferBytes = 536;
 // Two answers: one being handed to TCP while the next is built.
 inline constexpr std::size_t kAnswerBufferBytes = 2 * kMaxAduBytes;
 

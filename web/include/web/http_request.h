@@ -22,11 +22,14 @@
 
 namespace web {
 
-// Limits (docs/web.md): a browser's request for the page or the JSON API fits them with room to spare.
-inline constexpr std::size_t kMaxRequestLine = 1024;   // 414 beyond
-inline constexpr std::size_t kMaxHeaderBlock = 4096;   // request line + headers + blank line; 431 beyond
+// Limits (docs/web.md "Requests"), sized to what the page and the JSON API send, with room to spare: the
+// longest request line is a 32-register read (about 200 bytes), a browser's API request with its cookie
+// and CSRF token about 900 bytes of request line and headers, the largest API body (a password change)
+// about 60 bytes. They make up the receive buffer of each connection (kHttpReceiveBufferBytes).
+inline constexpr std::size_t kMaxRequestLine = 512;    // 414 beyond
+inline constexpr std::size_t kMaxHeaderBlock = 2048;   // request line + headers + blank line; 431 beyond
 inline constexpr std::size_t kMaxHeaders = 24;         // 431 beyond
-inline constexpr std::size_t kMaxBody = 4096;          // 413 beyond
+inline constexpr std::size_t kMaxBody = 512;           // 413 beyond
 
 enum class HttpStatus : std::uint16_t {
   kOk = 200,

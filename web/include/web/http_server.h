@@ -1,11 +1,17 @@
 // The web server's connection core (docs/web.md "Connections"): up to kMaxHttpClients connections, each
-// with its receive buffer and response buffer, requests parsed by ParseHttpRequest and handed to an
-// HttpHandler one at a time per connection (pipelined requests wait their turn), answers taken out by
-// the transport (firmware/web_service binds this to lwIP). Pure: bytes in, bytes out, time injected.
+// with its receive buffer, sharing kHttpResponseBuffers response buffers; requests parsed by
+// ParseHttpRequest and handed to an HttpHandler one at a time per connection (pipelined requests wait their
+// turn), answers taken out by the transport (firmware/web_service binds this to lwIP). Pure: bytes in,
+// bytes out, time injected.
 //
 // - A handler may answer later (kPending): the server calls it again with the same request on each Poll
 //   until it is done (the drive's registers are read over the serial link). The request stays in the
 //   receive buffer meanwhile, so the views in HttpRequest remain valid.
+// - Response buffers: an answer (or an error) is written into a response buffer taken for it, which is
+//   given back once the transport has taken the bytes in it (an asset's body is sent from flash and needs
+//   no buffer). A request whose answer finds no buffer free waits (Poll tries again). An answer still in
+//   its buffer kRequestTimeout after it was written closes its connection, so a client that does not
+//   read cannot keep the others waiting.
 // - Keep-alive: after an answer the next request on the connection is served. A malformed request gets
 //   its 4xx and the connection closes after it (its framing can no longer be trusted).
 // - Slots: when a connection arrives and every slot is taken, the transport may close the connection that
@@ -30,11 +36,23 @@
 
 namespace web {
 
-inline constexpr std::size_t kMaxHttpClients = 4;
+// A browser loading the page fetches the stylesheet and both scripts at once (lwipopts.h
+// IPE_MAX_HTTP_CLIENTS); a fourth connection takes an idle one's slot or is answered 503.
+inline constexpr std::size_t kMaxHttpClients = 3;
+// lwIP reopens a receive window only in steps of half a window (silly window avoidance): the receive
+// buffer keeps that much room beyond the largest request, so that the last step before a request at the
+// limits is always announced. At least TCP_WND / 2 (static_assert in firmware/web_service.cc).
+inline constexpr std::size_t kHttpReceiveSlack = 272;
 // A whole request (headers and body at their limits) fits: nothing is ever refused back to TCP.
-inline constexpr std::size_t kHttpReceiveBufferBytes = kMaxHeaderBlock + kMaxBody;
-// Headers and an in-buffer body (JSON answers are at most a few KiB; assets are sent from where they are).
+inline constexpr std::size_t kHttpReceiveBufferBytes = kMaxHeaderBlock + kMaxBody + kHttpReceiveSlack;
+// Headers and an in-buffer body. The largest answer is /api/eip-scanner with all 16 CIP connections
+// (about 3.9 KiB); assets are sent from flash, only their head is in the buffer. An answer that does not
+// fit is replaced by a bodiless 500 (counters().overflows).
 inline constexpr std::size_t kHttpResponseBufferBytes = 4096;
+// Response buffers shared by the connections. A buffer is held only until the transport has handed its
+// bytes to TCP: an asset's head or a JSON answer of up to TCP_SND_BUF leaves at once, a larger answer
+// within a few round trips; so one buffer serves a page load and its pollers (docs/web.md "Connections").
+inline constexpr std::size_t kHttpResponseBuffers = 1;
 inline constexpr hal::Micros kRequestTimeout = 10 * hal::kMicrosPerSecond;
 inline constexpr hal::Micros kIdleTimeout = 60 * hal::kMicrosPerSecond;
 
@@ -63,6 +81,8 @@ struct HttpServerCounters {
   std::uint32_t request_timeouts = 0; // 408: a request did not arrive whole in time
   std::uint32_t idle_closed = 0;      // closed after kIdleTimeout without a request
   std::uint32_t overflows = 0;        // an answer too large for the response buffer (500 sent)
+  std::uint32_t response_waits = 0;   // requests (or errors) that waited for a response buffer
+  std::uint32_t answer_timeouts = 0;  // connections closed: their answer stayed kRequestTimeout in its buffer
   std::array<std::uint32_t, 6> responses_by_class{};  // [2] = 2xx ... [5] = 5xx
 };
 
@@ -111,15 +131,21 @@ class HttpServer {
   // The client table (docs/robustness.md "Exhaustion"); refused: Open found every slot taken (the
   // transport then evicts an idle connection or answers 503).
   base::PoolStats client_pool() const { return client_marks_.Stats(open_clients(), kMaxHttpClients); }
+  // The response buffers; refused: an answer had to wait for one (counted once per answer).
+  base::PoolStats response_pool() const { return response_marks_.Stats(responses_in_use(), kHttpResponseBuffers); }
 
  private:
+  static constexpr std::size_t kNoResponse = kHttpResponseBuffers;
+
   struct Client {
     bool open = false;
     std::array<std::uint8_t, kHttpReceiveBufferBytes> input{};
     std::size_t input_used = 0;
     std::size_t unreleased = 0;  // taken by Receive, not yet handed back to the transport's window
-    std::array<std::uint8_t, kHttpResponseBufferBytes> output{};
-    std::span<const std::uint8_t> head_left;
+    std::size_t response = kNoResponse;  // the response buffer this client holds
+    bool waiting_for_response = false;   // an answer or error is due but no response buffer was free
+    hal::Micros answer_written = 0;      // when the answer in the response buffer was written
+    std::span<const std::uint8_t> head_left;  // in the response buffer
     std::span<const std::uint8_t> body_left;
     HttpRequest request;
     std::size_t request_bytes = 0;  // the active request's length in `input`
@@ -132,14 +158,22 @@ class HttpServer {
 
   void Serve(Client& client, HttpClientId id, hal::Micros now);
   void RunHandler(Client& client, HttpClientId id, hal::Micros now);
-  void SendError(Client& client, HttpStatus status);
+  // Both write into a response buffer and return false (nothing done) when none is free.
+  bool SendError(Client& client, HttpStatus status, hal::Micros now);
+  bool TakeResponse(Client& client);
+  void GiveBackResponse(Client& client);
+  std::size_t responses_in_use() const;
+  bool AnyWaitingWithResponseFree() const;
   void CountResponse(HttpStatus status);
   bool OutputPending(const Client& client) const { return !client.head_left.empty() || !client.body_left.empty(); }
 
   HttpHandler& handler_;
   std::array<Client, kMaxHttpClients> clients_{};
+  std::array<std::array<std::uint8_t, kHttpResponseBufferBytes>, kHttpResponseBuffers> responses_{};
+  std::array<bool, kHttpResponseBuffers> response_taken_{};
   HttpServerCounters counters_;
   base::PoolWatermark client_marks_;
+  base::PoolWatermark response_marks_;
 };
 
 }  // namespace web
