@@ -219,6 +219,7 @@ void ReportPools(const Card& card, ReportSink& out) {
   ReportPool(out, "cip_productions", eip.connections().production_pool());
   ReportPool(out, "http_tcp_slots", card.web_service().slot_pool());
   ReportPool(out, "http_clients", card.http_server().client_pool());
+  ReportPool(out, "http_responses", card.http_server().response_pool());
   ReportPool(out, "web_sessions", card.access().session_pool(card.clock().NowMicros()));
   ReportPool(out, "proxy_accesses", card.proxy().access_pool());
   ReportPool(out, "parameter_writes", card.parameter_writer().queue_pool());
