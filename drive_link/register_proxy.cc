@@ -11,13 +11,17 @@
 namespace drive_link {
 namespace {
 
-// F875-F879, read after kConfigNumbers: the block read selections in force.
+// F875-F879, read after kConfigNumbers: the block read selections in force. FD01 is read last, so the
+// drive's status is known the moment the load ends (a card reset resets the inverter too: the status
+// from before is gone, and the drive profile must not see "unknown" between the load and the first cycle).
 constexpr std::uint16_t kF875 = 0x0875;
-constexpr std::size_t kLoadReadCount = kConfigNumberCount + kBlockReadSelections;
+constexpr std::size_t kFd01LoadIndex = kConfigNumberCount + kBlockReadSelections;
+constexpr std::size_t kLoadReadCount = kFd01LoadIndex + 1;
 // F875-F879 choices 0-10 (seed 003 §4).
 constexpr std::uint16_t kMaxBlockReadSelection = 10;
 
 std::uint16_t LoadNumber(std::size_t index) {
+  if (index == kFd01LoadIndex) return reg::kFd01;
   return index < kConfigNumberCount ? kConfigNumbers[index]
                                     : static_cast<std::uint16_t>(kF875 + (index - kConfigNumberCount));
 }
@@ -256,6 +260,7 @@ void RegisterProxy::FinishLoad() {
   // An action in force is carried out again (after a link recovery the inverter may have lost it).
   loss_action_written_ = false;
   ApplyConfig();
+  if (const AccessResult& fd01 = load_reads_[kFd01LoadIndex]; fd01.ok()) SetFd01(fd01.value);
   next_cycle_at_ = now_;
   next_display_at_ = now_;
   notify_loaded_ = true;

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "register_proxy_fixture.h"
 
 namespace drive_link::test {
@@ -24,7 +26,7 @@ constexpr std::uint16_t kSr2 = 0x0019;
 constexpr std::uint8_t kEmergencyStopTrip = 0x11;
 
 // 62 reads: the 57 configuration numbers and F875-F879.
-constexpr Micros kLoadTime = 62 * kExchange;
+constexpr Micros kLoadTime = 63 * kExchange;  // 57 configuration numbers, F875-F879, FD01
 // A block read of 2 groups: 2 ms + 9 reply bytes (ceil(9 x 11 / 19200 s) = 5157 us).
 constexpr Micros kBlockExchange2 = 2 * kMilli + 5157;
 
@@ -37,9 +39,11 @@ using RegisterProxyTest = RegisterProxyFixture;
 TEST_F(RegisterProxyTest, ReadsTheConfigurationAfterTheStartupSilence) {
   std::uint64_t executed_at_load = 0;
   Micros loaded_at = 0;
+  bool status_known_at_load = false;
   config_.on_load = [&] {
     executed_at_load = server_->counters().executed;
     loaded_at = Now();
+    status_known_at_load = proxy_->drive_status_known();
   };
   Start();
   EXPECT_EQ(proxy_->Start(Now()).code(), base::StatusCode::kFailedPrecondition);
@@ -49,7 +53,8 @@ TEST_F(RegisterProxyTest, ReadsTheConfigurationAfterTheStartupSilence) {
   RunUntil(kStart + 3 * kSecond);
 
   ASSERT_EQ(config_.loads.size(), 1U);
-  EXPECT_EQ(executed_at_load, 62U);  // nothing but the configuration reads before the listener
+  EXPECT_EQ(executed_at_load, 63U);  // nothing but the configuration reads (and FD01) before the listener
+  EXPECT_TRUE(status_known_at_load);  // FD01 is the load's last read: the drive profile never sees a gap
   EXPECT_EQ(loaded_at, kStart + kSecond + kLoadTime);
   EXPECT_TRUE(proxy_->config_loaded());
   EXPECT_EQ(proxy_->counters().config_loads, 1U);
@@ -421,12 +426,19 @@ TEST_F(RegisterProxyTest, F899ReloadsTheConfigurationAfterTheResetSilence) {
   RunFor(2 * kSecond);
   ASSERT_EQ(WriteNow(0xC002, 0, WriteMode::kRamAndEeprom).error, AccessError::kNone);  // word 2 not used
   Micros loaded_at = 0;
-  config_.on_load = [&] { loaded_at = Now(); };
+  std::optional<std::uint16_t> fd01_at_load;
+  config_.on_load = [&] {
+    loaded_at = Now();
+    if (proxy_->drive_status_known()) fd01_at_load = proxy_->drive_status();
+  };
   EXPECT_EQ(WriteNow(0x0899, 1).error, AccessError::kNone);
   const Micros reset_until = model_.ResetInProgressUntil();
   EXPECT_EQ(Reg(kFa06), 0);  // the inverter re-initialised
   ASSERT_TRUE(RunUntilTrue([this] { return config_.loads.size() == 2; }, 3 * kSecond).has_value());
   EXPECT_EQ(loaded_at, reset_until + kLoadTime);
+  // The status after the reset, read by the load itself: a stopped drive in standby (FD01 bit 14).
+  EXPECT_EQ(fd01_at_load, std::optional<std::uint16_t>(Reg(0xFD01)));
+  EXPECT_NE(*fd01_at_load & 0x4000, 0);
   EXPECT_EQ(proxy_->config().command_menus, (std::array<std::uint16_t, 6>{1, 0, 0, 0, 0, 0}));
   EXPECT_EQ(proxy_->counters().config_loads, 2U);
   // A card reset: the master's words are forgotten and not written until it sends again.

@@ -310,7 +310,7 @@ class RegisterProxy final : public DriveRegisters,
   bool loading_ = false;
   bool notify_loaded_ = false;       // OnConfigLoaded due at the end of this Poll
   std::uint8_t load_index_ = 0;
-  std::array<AccessResult, kConfigNumberCount + kBlockReadSelections> load_reads_{};
+  std::array<AccessResult, kConfigNumberCount + kBlockReadSelections + 1> load_reads_{};  // ... and FD01
   ParsedConfig parsed_{};
   std::array<std::uint16_t, kBlockReadSelections> block_selections_{};
 
