@@ -15,8 +15,8 @@ namespace {
 // drive's status is known the moment the load ends (a card reset resets the inverter too: the status
 // from before is gone, and the drive profile must not see "unknown" between the load and the first cycle).
 constexpr std::uint16_t kF875 = 0x0875;
-constexpr std::size_t kFd01LoadIndex = kConfigNumberCount + kBlockReadSelections;
-constexpr std::size_t kLoadReadCount = kFd01LoadIndex + 1;
+constexpr std::size_t kLoadReadCount = kConfigLoadReads;
+constexpr std::size_t kFd01LoadIndex = kLoadReadCount - 1;
 // F875-F879 choices 0-10 (seed 003 §4).
 constexpr std::uint16_t kMaxBlockReadSelection = 10;
 

@@ -41,6 +41,9 @@ inline constexpr std::size_t kMaxPendingAccesses = 8;
 // F875-F879: the block read selections (seed 003 §4).
 inline constexpr std::size_t kBlockReadSelections = 5;
 
+// The configuration load reads kConfigNumbers, then F875-F879, then FD01 (register_proxy.cc).
+inline constexpr std::size_t kConfigLoadReads = kConfigNumberCount + kBlockReadSelections + 1;
+
 // The command words the exchange writes: the 6 scanner words (index 0-5, targets from c001-c006), then
 // the drive command (6 = FA06, 7 = FA07, fixed targets, in use while taken). One table, so changes,
 // refreshes, the fault-reset edge and the loss rules are the same code for both; a uint8_t holds one bit
@@ -310,7 +313,7 @@ class RegisterProxy final : public DriveRegisters,
   bool loading_ = false;
   bool notify_loaded_ = false;       // OnConfigLoaded due at the end of this Poll
   std::uint8_t load_index_ = 0;
-  std::array<AccessResult, kConfigNumberCount + kBlockReadSelections + 1> load_reads_{};  // ... and FD01
+  std::array<AccessResult, kConfigLoadReads> load_reads_{};
   ParsedConfig parsed_{};
   std::array<std::uint16_t, kBlockReadSelections> block_selections_{};
 
