@@ -124,6 +124,7 @@ void DriveAssemblies::Produce(std::uint32_t point, std::span<std::uint8_t> out) 
 ServiceStatus DriveAssemblies::OnExplicitWrite(std::uint32_t instance, std::span<const std::uint8_t> data) {
   if (!runtime_.ExplicitWriteAllowed(instance)) return Error(GeneralStatus::kDeviceStateConflict);
   if (instance == kInputOnlyHeartbeat) return Success();
+  if (runtime_.ExplicitOutputHeldByLoss(instance, data)) return Error(GeneralStatus::kDeviceStateConflict);
   if (!runtime_.ApplyOutput(instance, data, CommandOrigin::kExplicit)) {
     return Error(GeneralStatus::kInvalidAttributeValue);  // not an output of this size: not registered so
   }

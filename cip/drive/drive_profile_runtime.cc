@@ -72,6 +72,7 @@ bool DriveProfileRuntime::ApplyOutput(std::uint32_t instance, std::span<const st
     case CommandProfile::kNone:
       break;
   }
+  if (origin == CommandOrigin::kExplicit) HoldStopDuringLoss();
   if (command.parameter.present) {
     if (ChannelSlot* slot = SlotOf(instance); slot != nullptr) {
       slot->channel.Offer(command.parameter);
@@ -143,8 +144,37 @@ bool DriveProfileRuntime::ExplicitWriteAllowed(std::uint32_t instance) const {
   return true;
 }
 
+bool DriveProfileRuntime::ExplicitOutputHeldByLoss(std::uint32_t instance, std::span<const std::uint8_t> data) const {
+  if (!links_.command.CommandsHeldByLoss()) return false;
+  DriveCommand command;
+  if (!DecodeOutput(instance, data, command)) return false;  // answered as an invalid size
+  switch (command.profile) {
+    case CommandProfile::kCipSpeed:
+      return command.run_forward || command.run_reverse;
+    case CommandProfile::kNative:
+      return !reg::IsStopCommand(command.native_command);
+    case CommandProfile::kScanner:
+      return true;  // scanner words are not written while the action is in force
+    case CommandProfile::kNone:
+      break;
+  }
+  return false;
+}
+
+// An explicit stop taken while a loss holds the drive: the loss action writes it from now on instead of
+// its own FA06 (c101 = 5 must not run the drive again after a user stopped it).
+void DriveProfileRuntime::HoldStopDuringLoss() {
+  if (owner_ == Owner::kExplicit && written_valid_ && links_.command.CommandsHeldByLoss()) {
+    links_.command.HoldStopDuringLoss(written_.fa06);
+  }
+}
+
 ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool value) {
   if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
+  // While a network loss holds the drive only a stop is taken: a run, a change of the control source
+  // or a fault reset would be dropped or undone by the loss action (docs/drive-control.md).
+  const bool stop = (attribute == ControlAttribute::kRun1 || attribute == ControlAttribute::kRun2) && !value;
+  if (!stop && links_.command.CommandsHeldByLoss()) return Error(GeneralStatus::kDeviceStateConflict);
   bool fault_reset_event = false;
   switch (attribute) {
     case ControlAttribute::kRun1:
@@ -168,12 +198,15 @@ ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool v
   source_ = Source::kAttributes;
   fault_reset_bit_ = Step(fault_reset_event).send_fault_reset;
   WriteDriveCommand();
+  HoldStopDuringLoss();
   ComputeFeedback();
   return Success();
 }
 
 ServiceStatus DriveProfileRuntime::SetSpeedReference(std::int16_t rpm) {
-  if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
+  if (!ExplicitControlAllowed() || links_.command.CommandsHeldByLoss()) {
+    return Error(GeneralStatus::kDeviceStateConflict);
+  }
   speed_reference_rpm_ = rpm;
   Take(CommandOrigin::kExplicit, 0);
   source_ = Source::kAttributes;
@@ -192,6 +225,7 @@ ServiceStatus DriveProfileRuntime::ResetSupervisor() {
   fault_reset_bit_ = false;
   if (owner_ == Owner::kExplicit) source_ = Source::kAttributes;
   WriteDriveCommand();  // the run type is gone: FA06 without its run bits
+  HoldStopDuringLoss();
   ComputeFeedback();
   return Success();
 }

@@ -350,6 +350,23 @@ TEST_F(DriveAssembliesTest, ExplicitSetOfAFreeOutputCommandsTheDrive) {
   EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 C7 30 03")), Hex("90 00 00 00"));  // heartbeat: nothing to do
 }
 
+// docs/drive-control.md: an explicit write of a command output while a loss holds the drive: a run or
+// scanner words 0x10 and nothing handed over; a stop (21 without run bits, 100 without run/jog) taken
+// and held as the loss action's FA06.
+TEST_F(DriveAssembliesTest, ExplicitOutputWhileALossHoldsTheDriveTakesStopsOnly) {
+  card_.Drive(kStandby);
+  card_.channel.held_by_loss = true;
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 15 30 03 61 00 08 07")), Hex("90 00 10 00"));  // 21 run forward
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 64 30 03 00 C4 70 17 00 00 00 00 00 00 00 00 00 00 00 00")), Hex("90 00 10 00"));  // 100 C400h
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 66 30 03 01 00 02 00 03 00 04 00 05 00 06 00")), Hex("90 00 10 00"));
+  EXPECT_TRUE(card_.channel.commands.empty());
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 15 30 03 60 00 08 07")), Hex("90 00 00 00"));  // 21 stop
+  EXPECT_EQ(card_.channel.commands, (Commands{{0xC000, 0x1770}}));
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 64 30 03 00 88 70 17 00 00 00 00 00 00 00 00 00 00 00 00")), Hex("90 00 00 00"));  // 100 coast
+  EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0x8800, 0x1770}));
+  EXPECT_EQ(card_.channel.held_stops, (std::vector<std::uint16_t>{0xC000, 0x8800}));
+}
+
 TEST_F(DriveAssembliesTest, ExplicitGetOfAnInputIsLive) {
   card_.Drive(kStandby);
   Consume(21, Hex("61 00 08 07"));
