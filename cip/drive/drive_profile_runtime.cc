@@ -175,6 +175,14 @@ ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool v
   // or a fault reset would be dropped or undone by the loss action (docs/drive-control.md).
   const bool stop = (attribute == ControlAttribute::kRun1 || attribute == ControlAttribute::kRun2) && !value;
   if (!stop && links_.command.CommandsHeldByLoss()) return Error(GeneralStatus::kDeviceStateConflict);
+  // A run edge while the drive is tripped would be stored and dropped: Faulted needs FaultRst first
+  // (seed 000 §4.6.3), so the answer says so instead of a success without a running drive.
+  const bool run = (attribute == ControlAttribute::kRun1 || attribute == ControlAttribute::kRun2) && value;
+  Step(false);
+  const SupervisorState state = supervisor_.state();
+  if (run && (state == SupervisorState::kFaulted || state == SupervisorState::kFaultStop)) {
+    return Error(GeneralStatus::kDeviceStateConflict);
+  }
   bool fault_reset_event = false;
   switch (attribute) {
     case ControlAttribute::kRun1:

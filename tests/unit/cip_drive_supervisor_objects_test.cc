@@ -121,6 +121,15 @@ TEST_F(ControlSupervisorObjectTest, WhileALossHoldsTheDriveOnlyStopsAreTaken) {
   EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0x0400, 0x0000}));
 }
 
+TEST_F(ControlSupervisorObjectTest, RunWhileTrippedIsADeviceStateConflict) {
+  card_.Drive(kTripped);
+  EXPECT_EQ(card_.Ask(Hex("0E 03 20 29 24 01 30 06")), Hex("8E 00 00 00 07"));  // Faulted
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 10 00"));
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 04 01")), Hex("90 00 10 00"));
+  EXPECT_TRUE(card_.channel.commands.empty());
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 00")), Hex("90 00 00 00"));  // a stop is taken
+}
+
 TEST_F(ControlSupervisorObjectTest, FaultResetActsOnItsRisingEdgeWhileTripped) {
   card_.Drive(kTripped);
   EXPECT_EQ(card_.Ask(Hex("0E 03 20 29 24 01 30 0A")), Hex("8E 00 00 00 01"));  // Faulted
