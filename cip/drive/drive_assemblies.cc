@@ -93,6 +93,8 @@ IoConnectionSpec DriveAssemblies::Describe(const IoPoints& points, const IoReque
     spec.kind = IoConnectionKind::kListenOnly;
   } else {
     spec.kind = IoConnectionKind::kExclusiveOwner;
+    // One owner of the drive command: every command output writes FA06/FA07 (docs/drive-control.md).
+    spec.owner_conflict = runtime_.DriveCommandOwnedBesides(points.consumed);
   }
   spec.consumed_size = IsHeartbeat(points.consumed) ? 0 : ConnectionSize(points.consumed, requested.consumed);
   spec.produced_size = ConnectionSize(points.produced, requested.produced);

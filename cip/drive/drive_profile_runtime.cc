@@ -124,14 +124,23 @@ bool DriveProfileRuntime::ScannerTargetsDriveCommand() const {
   return false;
 }
 
-bool DriveProfileRuntime::ExplicitControlAllowed() const {
-  for (std::uint16_t point : kCommandOutputs) {
-    if (links_.ownership.IsOwned(point)) return false;
-  }
+bool DriveProfileRuntime::CommandsDrive(std::uint32_t output) const {
+  if (std::find(kCommandOutputs.begin(), kCommandOutputs.end(), output) != kCommandOutputs.end()) return true;
   // 102/105 write FA06/FA07 through a scanner word when a c00n menu targets them.
-  if (ScannerTargetsDriveCommand() &&
-      (links_.ownership.IsOwned(kScannerOutput) || links_.ownership.IsOwned(kToshibaOutput))) {
-    return false;
+  return (output == kScannerOutput || output == kToshibaOutput) && ScannerTargetsDriveCommand();
+}
+
+bool DriveProfileRuntime::DriveCommandOwnedBesides(std::uint32_t output) const {
+  if (!CommandsDrive(output)) return false;
+  for (std::uint16_t point : kOutputInstances) {
+    if (point != output && CommandsDrive(point) && links_.ownership.IsOwned(point)) return true;
+  }
+  return false;
+}
+
+bool DriveProfileRuntime::ExplicitControlAllowed() const {
+  for (std::uint16_t point : kOutputInstances) {
+    if (CommandsDrive(point) && links_.ownership.IsOwned(point)) return false;
   }
   return true;
 }

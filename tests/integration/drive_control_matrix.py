@@ -213,9 +213,8 @@ def expect(path, state):
 
 
 ROWS = [(path, state) for state in STATES for path in PATHS
-        if not (path.startswith("class 1 100") and state not in ("no loss", "c101=2 in force"))]
-# Left out: a second exclusive owner on 100 while one owns 21 is accepted and the two fight over FA06/FA07
-# (ownership is per assembly instance): an open finding of issue 21, docs/drive-control.md.
+        if not (path.startswith("class 1 100") and state not in {"no loss", "c101=2 in force"} | OWNED)]
+# 100 while the owner (21, from our own address) is open: one owner of the drive command, 0x0106.
 
 
 # ---- running a row ------------------------------------------------------------------------------------------

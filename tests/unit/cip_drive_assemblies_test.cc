@@ -58,6 +58,38 @@ TEST_F(DriveAssembliesTest, DescribesTheDocumentedPairsAsExclusiveOwners) {
   }
 }
 
+// One owner of the drive command: while an exclusive owner of one command output is open (20, 21, 100,
+// 101; 102/105 while a c00n menu targets FA06/FA07), an exclusive owner of another is a conflict (the
+// Connection Manager answers 0x0106). The same point is the manager's own check (IsOwned).
+TEST_F(DriveAssembliesTest, ASecondCommandOutputOwnerConflicts) {
+  for (const std::uint32_t owned : {20U, 21U, 100U, 101U, 102U, 105U}) {
+    card_.ownership.owned = {owned};
+    for (const std::uint32_t consumed : {20U, 21U, 100U, 101U, 102U, 105U}) {
+      const IoConnectionSpec spec = Describe(1, consumed, 150, 4, 4);
+      EXPECT_EQ(spec.owner_conflict, consumed != owned) << owned << " owned, " << consumed << " asked";
+    }
+    EXPECT_FALSE(Describe(1, 199, 71, 0, 4).owner_conflict);  // input only
+    EXPECT_FALSE(Describe(1, 198, 71, 0, 4).owner_conflict);  // listen only
+  }
+  card_.ownership.owned.clear();
+  for (const std::uint32_t consumed : {20U, 21U, 100U, 101U, 102U, 105U}) {
+    EXPECT_FALSE(Describe(1, consumed, 150, 4, 4).owner_conflict) << consumed;
+  }
+}
+
+TEST_F(DriveAssembliesTest, ScannerOutputsWithoutDriveCommandMenusCoexistWithACommandOwner) {
+  drive_link::CardConfig config;
+  config.command_menus = {0, 0, 0, 0, 0, 0};  // no c00n targets FA06/FA07
+  card_.runtime.SetCardConfig(config);
+  card_.ownership.owned = {21};
+  EXPECT_FALSE(Describe(1, 102, 152, 12, 12).owner_conflict);
+  EXPECT_FALSE(Describe(1, 105, 155, 18, 18).owner_conflict);
+  EXPECT_TRUE(Describe(1, 100, 150, 4, 4).owner_conflict);
+  card_.ownership.owned = {102};
+  EXPECT_FALSE(Describe(1, 21, 71, 4, 4).owner_conflict);
+  EXPECT_FALSE(Describe(1, 105, 155, 18, 18).owner_conflict);
+}
+
 TEST_F(DriveAssembliesTest, AnyOutputPairsWithAnyInputAndTheConfigurationPointMayBeAbsent) {
   const IoConnectionSpec spec = Describe(std::nullopt, 21, 155, 4, 18);
   EXPECT_EQ(spec.extended, 0);

@@ -107,8 +107,15 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
   // write is refused with 0x10, a stop passes (docs/drive-control.md).
   bool ExplicitOutputHeldByLoss(std::uint32_t instance, std::span<const std::uint8_t> data) const;
   // Whether explicit messaging may command the drive (0x29/0x2A Sets, Reset): no exclusive owner
-  // consumes 20, 21, 100 or 101.
+  // consumes a command output (CommandsDrive).
   bool ExplicitControlAllowed() const;
+  // Whether output `output` commands the drive (writes FA06/FA07): 20, 21, 100, 101, and 102/105 while a
+  // c00n menu targets FA06 or FA07.
+  bool CommandsDrive(std::uint32_t output) const;
+  // Whether an exclusive owner of `output` would be a second master of the drive command: `output`
+  // commands the drive and an exclusive owner of another command output is open (Forward_Open 0x0106,
+  // DriveAssemblies::Describe).
+  bool DriveCommandOwnedBesides(std::uint32_t output) const;
   // 0x29 attributes 3, 4, 5, 12 and 0x2A attribute 4. 0x10 when ExplicitControlAllowed() is false, and
   // while a network loss holds the drive for everything but Run1/Run2 = 0 (a stop is never refused).
   // FaultRst acts on 0 -> 1 only (one fault reset while the drive is tripped).
