@@ -47,6 +47,7 @@ void DriveProfileRuntime::SetCardConfig(const drive_link::CardConfig& config) { 
 
 bool DriveProfileRuntime::ApplyOutput(std::uint32_t instance, std::span<const std::uint8_t> data,
                                       CommandOrigin origin) {
+  EndExplicitHoldAfterCardReset();
   DriveCommand command;
   if (!DecodeOutput(instance, data, command)) return false;
   OutputEdgeTracker* tracker = TrackerOf(instance);
@@ -179,6 +180,7 @@ void DriveProfileRuntime::HoldStopDuringLoss() {
 }
 
 ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool value) {
+  EndExplicitHoldAfterCardReset();
   if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
   // While a network loss holds the drive only a stop is taken: a run, a change of the control source
   // or a fault reset would be dropped or undone by the loss action (docs/drive-control.md).
@@ -221,6 +223,7 @@ ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool v
 }
 
 ServiceStatus DriveProfileRuntime::SetSpeedReference(std::int16_t rpm) {
+  EndExplicitHoldAfterCardReset();
   if (!ExplicitControlAllowed() || links_.command.CommandsHeldByLoss()) {
     return Error(GeneralStatus::kDeviceStateConflict);
   }
@@ -234,6 +237,7 @@ ServiceStatus DriveProfileRuntime::SetSpeedReference(std::int16_t rpm) {
 }
 
 ServiceStatus DriveProfileRuntime::ResetSupervisor() {
+  EndExplicitHoldAfterCardReset();
   if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
   supervisor_.Reset();
   run1_ = false;
@@ -250,6 +254,16 @@ ServiceStatus DriveProfileRuntime::ResetSupervisor() {
 void DriveProfileRuntime::Take(CommandOrigin origin, std::uint32_t instance) {
   owner_ = origin == CommandOrigin::kConnection ? Owner::kConnection : Owner::kExplicit;
   owner_point_ = origin == CommandOrigin::kConnection ? instance : 0;
+}
+
+// A card reset (f899 = 1) gives the drive command back by itself (RegisterProxy::BeginLoad): the card
+// starts afresh. An explicit command is nobody's to repeat, so its hold ends there (as a connection's
+// does at its close) instead of being taken over again by the next refresh, which would keep FA06/FA07
+// reserved for a master that is gone. A connection's next packet takes the command over again
+// (WriteDriveCommand). Checked before anything else acts, so that a new command after the reset is taken
+// afresh and not dropped.
+void DriveProfileRuntime::EndExplicitHoldAfterCardReset() {
+  if (owner_ == Owner::kExplicit && written_valid_ && !links_.command.drive_command_taken()) Release();
 }
 
 void DriveProfileRuntime::Release() {
@@ -368,6 +382,7 @@ void DriveProfileRuntime::OnAccessDone(drive_link::AccessToken token, const driv
 // ---- Status ----------------------------------------------------------------------------------------------
 
 void DriveProfileRuntime::Refresh() {
+  EndExplicitHoldAfterCardReset();
   Step(false);
   WriteDriveCommand();
   ComputeFeedback();

@@ -239,14 +239,8 @@ def reload_config(ctx, c101, c100=0, c102=0):
     if inverter()["hz"] != 0.0 or inverter()["fa06"] & RUN:
         ctx.client.cip(set_request(0x29, 1, 3, b"\x00"))
         wait_until("drive stopped before f899", lambda: inverter()["hz"] == 0.0, 5.0)
-    # An explicit command keeps the drive command taken (across f899 too): a connection takes it over and
-    # gives it back on its close, so every state starts with nobody holding FA06/FA07.
-    open_owner(ctx, "60 00 00 00")
-    triad, instance, conn = ctx.owner
-    ctx.endpoint.stop_sending(conn)
-    open_connection(ctx.client, forward_close(triad, io_path(instance, 71)))
-    ctx.endpoint.remove(conn)
-    ctx.owner = None
+    # f899 is a card reset: it ends an explicit command's hold of FA06/FA07 (docs/drive-control.md), so
+    # every state starts with nobody holding them.
     loads = stat("proxy.config_loads")
     reply = ctx.client.cip(set_request(0x65, 0x0899, 3, u16(1)))
     if reply.general != 0:

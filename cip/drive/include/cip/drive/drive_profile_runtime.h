@@ -180,6 +180,7 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
   bool ScannerTargetsDriveCommand() const;
   void Take(CommandOrigin origin, std::uint32_t instance);
   void Release();
+  void EndExplicitHoldAfterCardReset();
   void HoldStopDuringLoss();
   SupervisorOutputs Step(bool fault_reset_event);
   void WriteDriveCommand();
