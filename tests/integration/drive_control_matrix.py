@@ -8,48 +8,17 @@ Run by drive_control_matrix_tap.sh (card c500 = 1, acc = dec = 0.5 s, sr3 = 25 H
 import http.cookiejar
 import json
 import os
-import sys
 import time
 import urllib.request
 
 from eip_originator import *
 from eip_io import *
+from drive_matrix import RUN, SPEED_30HZ, effect, fail, inverter, settle, sim, stat, wait_until
 
 CARD = os.environ["CARD_IP"]
-sim = SimControl(os.environ["CARD_CONTROL"])
 RPI = 20000  # µs, multiplier 2: timeout 320 ms
-RUN = 0x0400
-SPEED_30HZ = 0x0BB8  # FA07, 0.01 Hz
 RUN_WORD = 0xC400    # priority (command, frequency) + run
 STOP_WORD = 0x8000   # command priority, no run: a deceleration stop, distinct from every c101 action's FA06
-
-
-def fail(message):
-    print(f"FAIL: {message}", file=sys.stderr)
-    card = {k: v for k, v in sim.stats().items() if k.startswith(("proxy.loss", "proxy.c536", "cip.lost"))}
-    print(f"      inverter {sim.status()}; card {card}", file=sys.stderr)
-    sys.exit(1)
-
-
-def stat(name):
-    return int(sim.stats()[name])
-
-
-def inverter():
-    s = sim.status()
-    word = lambda v: int(v, 16) if isinstance(v, str) else int(v)  # "0xC400" (FA06), a number (FA07)
-    return {"fa06": word(s["fa06"]), "fa07": word(s["fa07"]), "hz": s["output_hz"], "trip": s["trip"]}
-
-
-def wait_until(what, predicate, limit, step=0.02):
-    deadline = time.monotonic() + limit
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            fail(f"{what}: not within {limit} s")
-        time.sleep(step)
 
 
 def u16(value):
@@ -77,9 +46,9 @@ def unconnected(ctx, sets):
     return answer_codes([ctx.client.cip(set_request(*s)) for s in sets])
 
 
-def class3(ctx, sets):
-    """A class 3 connection to the Message Router (its open restores a loss with no exclusive owner open),
-    the Sets over it, a Forward_Close (no loss for class 3)."""
+def open_class3(ctx):
+    """A class 3 connection to the Message Router (its open restores a loss with no exclusive owner open;
+    its Forward_Close is no loss): its triad and its ExplicitConnection."""
     triad = Triad(0x0C00 + ctx.serial())
     t_o_id = 0x3C000000 + triad.serial
     request = forward_open(triad, ROUTER_PATH, 1000000, net_params(500, variable=True), 1000000,
@@ -88,7 +57,12 @@ def class3(ctx, sets):
     mr, raw, _ = open_connection(ctx.client, request)
     if mr.general != 0:
         fail(f"class 3 Forward_Open refused: {hexs(raw)}")
-    x = ExplicitConnection(ctx.client, decode_open_success(mr.data)["o_t_id"], t_o_id)
+    return triad, ExplicitConnection(ctx.client, decode_open_success(mr.data)["o_t_id"], t_o_id)
+
+
+def class3(ctx, sets):
+    """The Sets over a class 3 connection opened for them, then its Forward_Close."""
+    triad, x = open_class3(ctx)
     codes = []
     for n, s in enumerate(sets, 1):
         reply = x.request(n, set_request(*s))
@@ -259,14 +233,7 @@ def start_afresh(ctx):
     while it is open an owner's Forward_Close is a loss restored at once, before c100 can run out); an
     explicit Run1 = 0 stops the drive; an exclusive owner with a stop command takes FA06/FA07 over from any
     explicit hold and gives them back at its close; then the class 3 connection is closed (no loss)."""
-    triad = Triad(0x0F00 + ctx.serial())
-    t_o_id = 0x3F000000 + triad.serial
-    request = forward_open(triad, ROUTER_PATH, 1000000, net_params(500, variable=True), 1000000,
-                           net_params(500, variable=True), transport=CLASS3_SERVER_APPLICATION, t_o_id=t_o_id,
-                           multiplier=1)
-    mr, raw, _ = open_connection(ctx.client, request)
-    if mr.general != 0:
-        fail(f"class 3 Forward_Open refused: {hexs(raw)}")
+    triad, _ = open_class3(ctx)
     wait_until("network restored by the class 3 open", lambda: stat("cip.lost") == 0, 2.0)
     if inverter()["hz"] != 0.0 or inverter()["fa06"] & RUN:
         reply = ctx.client.cip(set_request(0x29, 1, 3, b"\x00"))
@@ -279,20 +246,6 @@ def start_afresh(ctx):
     wait_until("no loss after the owner's close", lambda: stat("cip.lost") == 0, 2.0)
     if stat("proxy.loss_action_active") != 0 or inverter()["trip"] != 0:
         fail("start afresh: a loss action or a trip left")
-
-
-def settle():
-    """The loss action's ramp is over: the "none" check compares a drive that no longer moves."""
-    last = None
-    deadline = time.monotonic() + 3.0
-    while time.monotonic() < deadline:
-        s = inverter()
-        now = (s["fa06"], s["fa07"], s["hz"], s["trip"])
-        if now == last:
-            return
-        last = now
-        time.sleep(0.15)
-    fail(f"drive does not settle: {inverter()}")
 
 
 def close_all(ctx):
@@ -358,42 +311,6 @@ def enter(ctx, state):
     settle()
 
 
-def effect(before, want):
-    """Checks the effect `want` in the inverter and returns what was seen: "runs" (FA06 run bit, FA07 0BB8h,
-    30 Hz within 3 s), "stops" (run bit clear and 0 Hz within 3 s, still after 1.2 s: two refreshes of a
-    loss action), "none" (FA06, FA07 and the trip code unchanged for 0.6 s); anything else is described."""
-    def runs(s):
-        return s["fa06"] & RUN and s["fa07"] == SPEED_30HZ and s["hz"] == 30.0 and s["trip"] == 0
-
-    def stopped(s):
-        return not s["fa06"] & RUN and s["hz"] == 0.0
-
-    if want == "set, no run":
-        time.sleep(0.6)
-        s = inverter()
-        ok = s["fa06"] == 0xC000 and s["fa07"] == SPEED_30HZ and s["hz"] == 0.0 and s["trip"] == 27
-        return want if ok else f"not reached: {s}"
-    if want == "none":
-        end = time.monotonic() + 0.6
-        while time.monotonic() < end:
-            s = inverter()
-            if (s["fa06"], s["fa07"], s["trip"]) != (before["fa06"], before["fa07"], before["trip"]):
-                return f"changed to {s}"
-            time.sleep(0.02)
-        return "none"
-    end = time.monotonic() + 3.0
-    while time.monotonic() < end:
-        s = inverter()
-        if want == "runs" and runs(s):
-            return "runs"
-        if want == "stops" and stopped(s):
-            time.sleep(1.2)
-            s = inverter()
-            return "stops" if stopped(s) else f"restarted: {s}"
-        time.sleep(0.02)
-    return f"not reached: {inverter()}"
-
-
 def main():
     results = []
     started = time.monotonic()
@@ -413,7 +330,7 @@ def main():
                     enter(ctx, state)
                 before = inverter()
                 answer = PATHS[path][1](ctx)
-                got_effect = effect(before, want_effect)
+                got_effect = effect(before, want_effect, 0xC000)
                 c536, loss = stat("proxy.c536"), stat("proxy.loss_action_active")
                 results.append((path, state, answer, got_effect, c536, loss))
                 print(f"   {state:24} {path:28} answer {answer:38} effect {got_effect:6} c536={c536} "

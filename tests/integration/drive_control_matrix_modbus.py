@@ -20,44 +20,13 @@ import sys
 import threading
 import time
 
-from eip_io import SimControl
+from drive_matrix import RUN, SPEED_30HZ, effect, fail, inverter, settle, sim, stat, wait_until
 
 CARD = os.environ["CARD_IP"]
-sim = SimControl(os.environ["CARD_CONTROL"])
-RUN = 0x0400
-SPEED_30HZ = 0x0BB8
 RUN_WORD = 0xC400    # priorities (command, frequency) + run
 STOP_WORD = 0x8000   # command priority, no run: distinct from every c101 action's FA06
 FA06, FA07, F899 = 0xFA06, 0xFA07, 0x0899
 LOSS_LOST = 3        # modbus.loss_state: lost (docs/modbus.md, unit 251 register 49)
-
-
-def fail(message):
-    print(f"FAIL: {message}", file=sys.stderr)
-    card = {k: v for k, v in sim.stats().items() if k.startswith(("proxy.loss", "proxy.c536", "modbus.lo"))}
-    print(f"      inverter {sim.status()}; card {card}", file=sys.stderr)
-    sys.exit(1)
-
-
-def stat(name):
-    return int(sim.stats()[name])
-
-
-def inverter():
-    s = sim.status()
-    word = lambda v: int(v, 16) if isinstance(v, str) else int(v)
-    return {"fa06": word(s["fa06"]), "fa07": word(s["fa07"]), "hz": s["output_hz"], "trip": s["trip"]}
-
-
-def wait_until(what, predicate, limit, step=0.02):
-    deadline = time.monotonic() + limit
-    while True:
-        value = predicate()
-        if value:
-            return value
-        if time.monotonic() > deadline:
-            fail(f"{what}: not within {limit} s")
-        time.sleep(step)
 
 
 # ---- Modbus on a plain socket: exact PDUs ----------------------------------------------------------------
@@ -241,20 +210,6 @@ def reload_config(ctx, wanted):
     ctx.reloads += 1
 
 
-def settle():
-    """The loss action's ramp is over: the "none" check compares a drive that no longer moves."""
-    last = None
-    deadline = time.monotonic() + 3.0
-    while time.monotonic() < deadline:
-        s = inverter()
-        now = (s["fa06"], s["fa07"], s["hz"], s["trip"])
-        if now == last:
-            return
-        last = now
-        time.sleep(0.15)
-    fail(f"drive does not settle: {inverter()}")
-
-
 def enter(ctx, config, state):
     """Puts the card and the inverter into `state`; a reload (f899) only when c001/c002/c100/c101 change
     or the drive tripped (err8 stays until f899)."""
@@ -288,42 +243,6 @@ def enter(ctx, config, state):
     settle()
 
 
-def effect(before, want):
-    """As drive_control_matrix.py: "runs" (FA06 run bit, FA07 0BB8h, 30 Hz within 3 s), "stops" (run bit
-    clear and 0 Hz within 3 s, still after 1.2 s: two refreshes of a loss action), "none" (FA06, FA07, trip
-    unchanged for 0.6 s), "set, no run" (FA06 C400h and FA07 0BB8h written, 0 Hz, err8 stays)."""
-    def runs(s):
-        return s["fa06"] & RUN and s["fa07"] == SPEED_30HZ and s["hz"] == 30.0 and s["trip"] == 0
-
-    def stopped(s):
-        return not s["fa06"] & RUN and s["hz"] == 0.0
-
-    if want == "set, no run":
-        time.sleep(0.6)
-        s = inverter()
-        ok = s["fa06"] == RUN_WORD and s["fa07"] == SPEED_30HZ and s["hz"] == 0.0 and s["trip"] == 27
-        return want if ok else f"not reached: {s}"
-    if want == "none":
-        end = time.monotonic() + 0.6
-        while time.monotonic() < end:
-            s = inverter()
-            if (s["fa06"], s["fa07"], s["trip"]) != (before["fa06"], before["fa07"], before["trip"]):
-                return f"changed to {s}"
-            time.sleep(0.02)
-        return "none"
-    end = time.monotonic() + 3.0
-    while time.monotonic() < end:
-        s = inverter()
-        if want == "runs" and runs(s):
-            return "runs"
-        if want == "stops" and stopped(s):
-            time.sleep(1.2)
-            s = inverter()
-            return "stops" if stopped(s) else f"restarted: {s}"
-        time.sleep(0.02)
-    return f"not reached: {inverter()}"
-
-
 def main():
     results = []
     started = time.monotonic()
@@ -341,7 +260,7 @@ def main():
             enter(ctx, config, state)
         before = inverter()
         answer = ", ".join(hexs(a) for a in PATHS[path][1](ctx))
-        got_effect = effect(before, want_effect)
+        got_effect = effect(before, want_effect, RUN_WORD)
         c536, loss = stat("proxy.c536"), stat("proxy.loss_action_active")
         results.append((config, path, state, answer, got_effect, c536, loss))
         print(f"   {config:25} {state:34} {path:19} answer {answer:30} effect {got_effect:11} c536={c536} "
