@@ -245,8 +245,9 @@ std::optional<ConnectionFailure> ConnectionManager::ValidateIo(const ForwardOpen
   const IoPoints& points = opening.points;
   // One originator owns the drive: an exclusive owner of another output from another IP address would
   // be a second master of the same motor (docs/security.md "Exclusive-owner write lock").
+  // Nor may two exclusive owners of different points command the same thing (spec.owner_conflict).
   if (spec.kind == IoConnectionKind::kExclusiveOwner &&
-      (IsOwned(points.consumed) || OwnedByAnotherOriginator(context.peer.address))) {
+      (IsOwned(points.consumed) || spec.owner_conflict || OwnedByAnotherOriginator(context.peer.address))) {
     return F::Extended(kExtendedOwnershipConflict);
   }
   if (spec.kind == IoConnectionKind::kListenOnly && !HasProducerOf(points.produced, false)) {

@@ -148,6 +148,8 @@ const char* AccessErrorName(AccessError error) {
       return "link-down";
     case AccessError::kTimeout:
       return "timeout";
+    case AccessError::kNetworkLost:
+      return "network-lost";
   }
   return "?";
 }

@@ -42,6 +42,7 @@ void RegisterProxy::NetworkLost(LossCause cause, hal::Micros now) {
 void RegisterProxy::NetworkRestored(hal::Micros /*now*/) {
   const bool was_acting = loss_action_active();
   loss_ = LossState::kNone;
+  stop_hold_valid_ = false;  // the drive command (or the scanner words) decide again
   c536_ = 0;
   UpdateStatusValues();
   if (was_acting) {
@@ -53,6 +54,33 @@ void RegisterProxy::NetworkRestored(hal::Micros /*now*/) {
     armed_ = static_cast<std::uint8_t>(armed_ & words_during_action_);
     fault_reset_edges_ = static_cast<std::uint8_t>(fault_reset_edges_ & words_during_action_);
   }
+  wake_ = true;
+}
+
+// From the report until the network is restored, unless c101 = 1 (continue) or c103 did not allow the
+// action: the command the drive gets is the loss supervision's. An explicit run or speed command taken
+// now would be overwritten when c100 runs out, or never written at all while the action is in force.
+bool RegisterProxy::CommandsHeldByLoss() const {
+  switch (loss_) {
+    case LossState::kDelay:
+    case LossState::kChecking:
+      return config().loss_action != kActionContinue;
+    case LossState::kActive:
+      return loss_action_ != kActionContinue;
+    case LossState::kNone:
+    case LossState::kNotApplied:
+      break;
+  }
+  return false;
+}
+
+void RegisterProxy::HoldStopDuringLoss(std::uint16_t fa06) {
+  if (!CommandsHeldByLoss() || !reg::IsStopCommand(fa06)) return;
+  stop_hold_ = With(fa06, 0, command_bit::kFaultReset);
+  stop_hold_valid_ = true;
+  // In force: written as the next own transaction. During c100 the front end's own write carries it.
+  stop_hold_written_ = false;
+  if (loss_action_ != kActionErr8) loss_action_written_ = false;
   wake_ = true;
 }
 
@@ -87,14 +115,25 @@ bool RegisterProxy::LossJob(hal::Micros now, Job& job) {
   }
   if (!loss_action_active()) return false;
   // Written once, then again every command_refresh_interval (an inverter reset would forget FA06); the
-  // err8 request only until the inverter has taken it.
-  const bool due = !loss_action_written_ ||
-                   (loss_action_ != kActionErr8 && now - loss_action_written_at_ >= config_.command_refresh_interval);
-  if (!due) return false;
+  // err8 request only until the inverter has taken it, then a stop held meanwhile (index 1), refreshed.
+  const hal::Micros refresh = config_.command_refresh_interval;
+  if (loss_action_ == kActionErr8) {
+    if (!loss_action_written_) {
+      job.kind = JobKind::kLossAction;
+      job.index = 0;
+      job.transaction = Transaction::WriteRam(reg::kFa30, reg::kErr8TripCode);
+      return true;
+    }
+    if (!stop_hold_valid_ || (stop_hold_written_ && now - stop_hold_written_at_ < refresh)) return false;
+    job.kind = JobKind::kLossAction;
+    job.index = 1;
+    job.transaction = Transaction::WriteRam(reg::kFa06, stop_hold_);
+    return true;
+  }
+  if (loss_action_written_ && now - loss_action_written_at_ < refresh) return false;
   job.kind = JobKind::kLossAction;
   job.index = 0;
-  job.transaction = loss_action_ == kActionErr8 ? Transaction::WriteRam(reg::kFa30, reg::kErr8TripCode)
-                                                : Transaction::WriteRam(reg::kFa06, LossActionFa06());
+  job.transaction = Transaction::WriteRam(reg::kFa06, LossActionFa06());
   return true;
 }
 
@@ -132,6 +171,8 @@ void RegisterProxy::DecideLossAction() {
 // in use on FA06 that the master has sent, else the drive command's last FA06 if it was released since (the connection that
 // held it closed before c100 ran out).
 std::uint16_t RegisterProxy::LossActionFa06() const {
+  // An explicit stop taken during the loss wins over the action (c101 = 5 would run the drive again).
+  if (stop_hold_valid_) return stop_hold_;
   std::uint16_t held = drive_taken_ ? drive_command_.fa06 : released_fa06_valid_ ? released_fa06_ : 0;
   for (std::size_t w = 0; w < kScannerWordCount && !drive_taken_; ++w) {
     // Only a word the master has sent: one never sent wrote nothing to FA06.
@@ -160,12 +201,18 @@ std::uint16_t RegisterProxy::LossActionFa06() const {
   return held;
 }
 
-void RegisterProxy::OnLossActionWritten(const Completion& completion, hal::Micros now) {
+void RegisterProxy::OnLossActionWritten(std::uint8_t index, const Completion& completion, hal::Micros now) {
   ++counters_.loss_action_writes;
   if (!completion.ok()) ++counters_.loss_action_errors;
   if (!loss_action_active()) return;  // restored meanwhile
   // Taken or refused: done until the refresh (a refusal would not change on repetition). Unanswered: again.
-  loss_action_written_ = completion.ok() || completion.outcome == Outcome::kErrorReply;
+  const bool done = completion.ok() || completion.outcome == Outcome::kErrorReply;
+  if (index == 1) {
+    stop_hold_written_ = done;
+    stop_hold_written_at_ = now;
+    return;
+  }
+  loss_action_written_ = done;
   loss_action_written_at_ = now;
 }
 

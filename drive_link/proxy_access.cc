@@ -20,6 +20,11 @@ bool ResetsInverter(const Transaction& transaction) {
          (transaction.data & reg::command_bit::kFaultReset) != 0;
 }
 
+// FA07 (the speed) or an FA06 that runs the drive; a stop on FA06 is never refused for a loss.
+bool RunOrSpeedCommand(std::uint16_t number, std::uint16_t value) {
+  return number == reg::kFa07 || (number == reg::kFa06 && !reg::IsStopCommand(value));
+}
+
 // Wrap-safe "a was accepted before b".
 bool Before(std::uint32_t a, std::uint32_t b) { return static_cast<std::int32_t>(a - b) < 0; }
 
@@ -53,6 +58,8 @@ base::Result<AccessToken> RegisterProxy::Write(std::uint16_t number, std::uint16
     refusal = AccessError::kLinkDown;
   } else if (IsScannerTarget(number)) {
     refusal = AccessError::kReservedForScanner;  // IO scanning owns it (seed 000 §9.1)
+  } else if (RunOrSpeedCommand(number, value) && CommandsHeldByLoss()) {
+    refusal = AccessError::kNetworkLost;  // the loss action owns FA06: a success would be a lie
   }
   return Accept(transaction, listener, refusal);
 }
@@ -141,6 +148,10 @@ void RegisterProxy::OnAccessComplete(Access& access, const Completion& completio
   const AccessError error = MapError(access, completion);
   std::uint16_t value = completion.data;
   if (IsWrite(transaction) && completion.outcome == Outcome::kNoReply) value = transaction.data;
+  // A stop written to FA06 while the loss holds it must not be undone by the action's next write.
+  if (error == AccessError::kNone && IsWrite(transaction) && transaction.comm_number == reg::kFa06) {
+    HoldStopDuringLoss(transaction.data);
+  }
   if (access.listener == nullptr) {
     access = Access{};  // cancelled: nobody to tell
   } else {

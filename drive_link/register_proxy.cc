@@ -76,6 +76,9 @@ hal::Micros RegisterProxy::NextDeadline() const {
     if (loss_action_active() && loss_action_written_ && loss_action_ != 4) {
       deadline = std::min(deadline, loss_action_written_at_ + config_.command_refresh_interval);
     }
+    if (loss_action_active() && loss_action_ == 4 && stop_hold_valid_ && stop_hold_written_) {
+      deadline = std::min(deadline, stop_hold_written_at_ + config_.command_refresh_interval);
+    }
   }
   return deadline;
 }
@@ -139,7 +142,7 @@ void RegisterProxy::OnOwnComplete(const Job& job, const Completion& completion) 
       OnLossCheckRead(job.index, completion);
       break;
     case JobKind::kLossAction:
-      OnLossActionWritten(completion, now_);
+      OnLossActionWritten(job.index, completion, now_);
       break;
     case JobKind::kCommandWrite:
       OnCommandWritten(job, completion);
@@ -191,6 +194,7 @@ void RegisterProxy::BeginLoad(bool card_reset) {
     drive_taken_ = false;
     fault_reset_edges_ = 0;
     loss_ = LossState::kNone;
+    stop_hold_valid_ = false;
     c536_ = 0;
   }
   loading_ = true;
@@ -259,6 +263,7 @@ void RegisterProxy::FinishLoad() {
   ++counters_.config_loads;
   // An action in force is carried out again (after a link recovery the inverter may have lost it).
   loss_action_written_ = false;
+  stop_hold_written_ = false;
   ApplyConfig();
   if (const AccessResult& fd01 = load_reads_[kFd01LoadIndex]; fd01.ok()) SetFd01(fd01.value);
   next_cycle_at_ = now_;

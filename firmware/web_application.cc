@@ -120,7 +120,8 @@ HttpStatus StatusOf(drive_link::AccessError error) {
     case drive_link::AccessError::kNotWritableWhileRunning:
     case drive_link::AccessError::kReadOnly:
     case drive_link::AccessError::kReservedForScanner:
-    case drive_link::AccessError::kRefused: return HttpStatus::kConflict;
+    case drive_link::AccessError::kRefused:
+    case drive_link::AccessError::kNetworkLost: return HttpStatus::kConflict;
     case drive_link::AccessError::kLinkDown: return HttpStatus::kServiceUnavailable;
     case drive_link::AccessError::kTimeout: return HttpStatus::kGatewayTimeout;
   }

@@ -32,6 +32,9 @@ ExceptionCode ExceptionForWriteError(AccessError error) {
     case AccessError::kRefused:
     case AccessError::kLinkDown:
     case AccessError::kTimeout:
+    // A loss action holds the drive (docs/drive-control.md): the seed lists 01-04 for FC 06/16 (§8.5), and
+    // 04 is the one that says "not carried out"; 06 (busy) would promise that a retry succeeds.
+    case AccessError::kNetworkLost:
       return ExceptionCode::kServerDeviceFailure;
   }
   return ExceptionCode::kServerDeviceFailure;

@@ -93,6 +93,8 @@ IoConnectionSpec DriveAssemblies::Describe(const IoPoints& points, const IoReque
     spec.kind = IoConnectionKind::kListenOnly;
   } else {
     spec.kind = IoConnectionKind::kExclusiveOwner;
+    // One owner of the drive command: every command output writes FA06/FA07 (docs/drive-control.md).
+    spec.owner_conflict = runtime_.DriveCommandOwnedBesides(points.consumed);
   }
   spec.consumed_size = IsHeartbeat(points.consumed) ? 0 : ConnectionSize(points.consumed, requested.consumed);
   spec.produced_size = ConnectionSize(points.produced, requested.produced);
@@ -124,6 +126,7 @@ void DriveAssemblies::Produce(std::uint32_t point, std::span<std::uint8_t> out) 
 ServiceStatus DriveAssemblies::OnExplicitWrite(std::uint32_t instance, std::span<const std::uint8_t> data) {
   if (!runtime_.ExplicitWriteAllowed(instance)) return Error(GeneralStatus::kDeviceStateConflict);
   if (instance == kInputOnlyHeartbeat) return Success();
+  if (runtime_.ExplicitOutputHeldByLoss(instance, data)) return Error(GeneralStatus::kDeviceStateConflict);
   if (!runtime_.ApplyOutput(instance, data, CommandOrigin::kExplicit)) {
     return Error(GeneralStatus::kInvalidAttributeValue);  // not an output of this size: not registered so
   }

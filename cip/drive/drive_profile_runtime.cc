@@ -47,6 +47,7 @@ void DriveProfileRuntime::SetCardConfig(const drive_link::CardConfig& config) { 
 
 bool DriveProfileRuntime::ApplyOutput(std::uint32_t instance, std::span<const std::uint8_t> data,
                                       CommandOrigin origin) {
+  EndExplicitHoldAfterCardReset();
   DriveCommand command;
   if (!DecodeOutput(instance, data, command)) return false;
   OutputEdgeTracker* tracker = TrackerOf(instance);
@@ -72,6 +73,7 @@ bool DriveProfileRuntime::ApplyOutput(std::uint32_t instance, std::span<const st
     case CommandProfile::kNone:
       break;
   }
+  if (origin == CommandOrigin::kExplicit) HoldStopDuringLoss();
   if (command.parameter.present) {
     if (ChannelSlot* slot = SlotOf(instance); slot != nullptr) {
       slot->channel.Offer(command.parameter);
@@ -123,14 +125,23 @@ bool DriveProfileRuntime::ScannerTargetsDriveCommand() const {
   return false;
 }
 
-bool DriveProfileRuntime::ExplicitControlAllowed() const {
-  for (std::uint16_t point : kCommandOutputs) {
-    if (links_.ownership.IsOwned(point)) return false;
-  }
+bool DriveProfileRuntime::CommandsDrive(std::uint32_t output) const {
+  if (std::find(kCommandOutputs.begin(), kCommandOutputs.end(), output) != kCommandOutputs.end()) return true;
   // 102/105 write FA06/FA07 through a scanner word when a c00n menu targets them.
-  if (ScannerTargetsDriveCommand() &&
-      (links_.ownership.IsOwned(kScannerOutput) || links_.ownership.IsOwned(kToshibaOutput))) {
-    return false;
+  return (output == kScannerOutput || output == kToshibaOutput) && ScannerTargetsDriveCommand();
+}
+
+bool DriveProfileRuntime::DriveCommandOwnedBesides(std::uint32_t output) const {
+  if (!CommandsDrive(output)) return false;
+  for (std::uint16_t point : kOutputInstances) {
+    if (point != output && CommandsDrive(point) && links_.ownership.IsOwned(point)) return true;
+  }
+  return false;
+}
+
+bool DriveProfileRuntime::ExplicitControlAllowed() const {
+  for (std::uint16_t point : kOutputInstances) {
+    if (CommandsDrive(point) && links_.ownership.IsOwned(point)) return false;
   }
   return true;
 }
@@ -143,8 +154,46 @@ bool DriveProfileRuntime::ExplicitWriteAllowed(std::uint32_t instance) const {
   return true;
 }
 
+bool DriveProfileRuntime::ExplicitOutputHeldByLoss(std::uint32_t instance, std::span<const std::uint8_t> data) const {
+  if (!links_.command.CommandsHeldByLoss()) return false;
+  DriveCommand command;
+  if (!DecodeOutput(instance, data, command)) return false;  // answered as an invalid size
+  switch (command.profile) {
+    case CommandProfile::kCipSpeed:
+      return command.run_forward || command.run_reverse;
+    case CommandProfile::kNative:
+      return !reg::IsStopCommand(command.native_command);
+    case CommandProfile::kScanner:
+      return true;  // scanner words are not written while the action is in force
+    case CommandProfile::kNone:
+      break;
+  }
+  return false;
+}
+
+// An explicit stop taken while a loss holds the drive: the loss action writes it from now on instead of
+// its own FA06 (c101 = 5 must not run the drive again after a user stopped it).
+void DriveProfileRuntime::HoldStopDuringLoss() {
+  if (owner_ == Owner::kExplicit && written_valid_ && links_.command.CommandsHeldByLoss()) {
+    links_.command.HoldStopDuringLoss(written_.fa06);
+  }
+}
+
 ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool value) {
+  EndExplicitHoldAfterCardReset();
   if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
+  // While a network loss holds the drive only a stop is taken: a run, a change of the control source
+  // or a fault reset would be dropped or undone by the loss action (docs/drive-control.md).
+  const bool stop = (attribute == ControlAttribute::kRun1 || attribute == ControlAttribute::kRun2) && !value;
+  if (!stop && links_.command.CommandsHeldByLoss()) return Error(GeneralStatus::kDeviceStateConflict);
+  // A run edge while the drive is tripped would be stored and dropped: Faulted needs FaultRst first
+  // (seed 000 §4.6.3), so the answer says so instead of a success without a running drive.
+  const bool run = (attribute == ControlAttribute::kRun1 || attribute == ControlAttribute::kRun2) && value;
+  Step(false);
+  const SupervisorState state = supervisor_.state();
+  if (run && (state == SupervisorState::kFaulted || state == SupervisorState::kFaultStop)) {
+    return Error(GeneralStatus::kDeviceStateConflict);
+  }
   bool fault_reset_event = false;
   switch (attribute) {
     case ControlAttribute::kRun1:
@@ -168,12 +217,16 @@ ServiceStatus DriveProfileRuntime::SetControl(ControlAttribute attribute, bool v
   source_ = Source::kAttributes;
   fault_reset_bit_ = Step(fault_reset_event).send_fault_reset;
   WriteDriveCommand();
+  HoldStopDuringLoss();
   ComputeFeedback();
   return Success();
 }
 
 ServiceStatus DriveProfileRuntime::SetSpeedReference(std::int16_t rpm) {
-  if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
+  EndExplicitHoldAfterCardReset();
+  if (!ExplicitControlAllowed() || links_.command.CommandsHeldByLoss()) {
+    return Error(GeneralStatus::kDeviceStateConflict);
+  }
   speed_reference_rpm_ = rpm;
   Take(CommandOrigin::kExplicit, 0);
   source_ = Source::kAttributes;
@@ -184,6 +237,7 @@ ServiceStatus DriveProfileRuntime::SetSpeedReference(std::int16_t rpm) {
 }
 
 ServiceStatus DriveProfileRuntime::ResetSupervisor() {
+  EndExplicitHoldAfterCardReset();
   if (!ExplicitControlAllowed()) return Error(GeneralStatus::kDeviceStateConflict);
   supervisor_.Reset();
   run1_ = false;
@@ -192,6 +246,7 @@ ServiceStatus DriveProfileRuntime::ResetSupervisor() {
   fault_reset_bit_ = false;
   if (owner_ == Owner::kExplicit) source_ = Source::kAttributes;
   WriteDriveCommand();  // the run type is gone: FA06 without its run bits
+  HoldStopDuringLoss();
   ComputeFeedback();
   return Success();
 }
@@ -199,6 +254,16 @@ ServiceStatus DriveProfileRuntime::ResetSupervisor() {
 void DriveProfileRuntime::Take(CommandOrigin origin, std::uint32_t instance) {
   owner_ = origin == CommandOrigin::kConnection ? Owner::kConnection : Owner::kExplicit;
   owner_point_ = origin == CommandOrigin::kConnection ? instance : 0;
+}
+
+// A card reset (f899 = 1) gives the drive command back by itself (RegisterProxy::BeginLoad): the card
+// starts afresh. An explicit command is nobody's to repeat, so its hold ends there (as a connection's
+// does at its close) instead of being taken over again by the next refresh, which would keep FA06/FA07
+// reserved for a master that is gone. A connection's next packet takes the command over again
+// (WriteDriveCommand). Checked before anything else acts, so that a new command after the reset is taken
+// afresh and not dropped.
+void DriveProfileRuntime::EndExplicitHoldAfterCardReset() {
+  if (owner_ == Owner::kExplicit && written_valid_ && !links_.command.drive_command_taken()) Release();
 }
 
 void DriveProfileRuntime::Release() {
@@ -317,6 +382,7 @@ void DriveProfileRuntime::OnAccessDone(drive_link::AccessToken token, const driv
 // ---- Status ----------------------------------------------------------------------------------------------
 
 void DriveProfileRuntime::Refresh() {
+  EndExplicitHoldAfterCardReset();
   Step(false);
   WriteDriveCommand();
   ComputeFeedback();

@@ -305,10 +305,11 @@ TEST(CardConfigTest, DriveStatusCodeFromStatusWord) {
 
 TEST(CardConfigTest, AccessErrorNamesAreDistinct) {
   std::set<std::string> names;
-  for (int e = 0; e <= static_cast<int>(AccessError::kTimeout); ++e) {
+  for (int e = 0; e <= static_cast<int>(AccessError::kNetworkLost); ++e) {
     names.insert(AccessErrorName(static_cast<AccessError>(e)));
   }
-  EXPECT_EQ(names.size(), 9U);
+  EXPECT_EQ(names.size(), 10U);
+  EXPECT_EQ(std::string(AccessErrorName(AccessError::kNetworkLost)), "network-lost");
   EXPECT_EQ(std::string(AccessErrorName(AccessError::kReservedForScanner)), "reserved-for-scanner");
 }
 

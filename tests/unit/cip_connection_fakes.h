@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -56,6 +57,7 @@ class FakeIo final : public IoApplication {
     if (points.consumed == 102 && scanner_consumed_size != 0) spec.consumed_size = scanner_consumed_size;
     if (points.produced == 152 && scanner_produced_size != 0) spec.produced_size = scanner_produced_size;
     spec.configuration_size = points.configuration == 2U ? 4 : 0;
+    spec.owner_conflict = conflicting_point.has_value() && points.consumed == *conflicting_point;
     return spec;
   }
   // 2 to 8 words: the requested size when it is one, else the largest.
@@ -73,6 +75,9 @@ class FakeIo final : public IoApplication {
     ++productions;
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::uint8_t>(point + i);
   }
+
+  // An exclusive owner of this point conflicts with the open ones (IoConnectionSpec::owner_conflict).
+  std::optional<std::uint32_t> conflicting_point;
 
   struct Consumption {
     std::uint32_t point;

@@ -230,5 +230,33 @@ TEST(CipOneOriginatorOwnsTheDrive, ExclusiveOwnerFromAnotherAddressRefused0x0106
   EXPECT_EQ(card.Open(other)[2], 0x00);
 }
 
+// Two exclusive owners of different points that command the same thing (the application says so with
+// IoConnectionSpec::owner_conflict, e.g. 21 and 100 of the drive profile): the second is 0x0106, from
+// the owner's own address too; once the first has closed it may open.
+TEST(CipOneOriginatorOwnsTheDrive, ApplicationOwnerConflictRefused0x0106) {
+  cip::test::ConnectionCard card;
+  ASSERT_EQ(card.Open()[2], 0x00);  // 1 / 100 / 150 from 10.0.2.2
+  cip::test::OpenParams other;      // 102 / 152
+  other.triad.connection_serial = 0x2000;
+  other.o_to_t.size = 2 + 4 + 12;
+  other.t_to_o.size = 2 + 12;
+  other.path = Hex("20 04 24 01 2C 66 2C 98");
+  card.io.conflicting_point = 102;
+  EXPECT_EQ(card.Open(other), Hex("D4 00 01 01 06 01 00 20 33 33 78 56 34 12 00 00"));
+  EXPECT_EQ(card.cm.ActiveConnections(), 1U);
+  // Wrong sizes are answered first: the ownership check is rule 19, after the sizes.
+  cip::test::OpenParams wrong = other;
+  wrong.o_to_t.size = 2 + 4 + 11;
+  EXPECT_EQ(card.Open(wrong)[4], 0x27);
+  // An input-only connection never conflicts.
+  cip::test::OpenParams watcher;
+  watcher.triad.connection_serial = 0x2001;
+  watcher.o_to_t.size = 2;
+  watcher.path = Hex("20 04 24 01 2C C6 2C 96");
+  EXPECT_EQ(card.Open(watcher)[2], 0x00);
+  card.io.conflicting_point.reset();
+  EXPECT_EQ(card.Open(other)[2], 0x00);
+}
+
 }  // namespace
 }  // namespace cip::drive

@@ -58,6 +58,38 @@ TEST_F(DriveAssembliesTest, DescribesTheDocumentedPairsAsExclusiveOwners) {
   }
 }
 
+// One owner of the drive command: while an exclusive owner of one command output is open (20, 21, 100,
+// 101; 102/105 while a c00n menu targets FA06/FA07), an exclusive owner of another is a conflict (the
+// Connection Manager answers 0x0106). The same point is the manager's own check (IsOwned).
+TEST_F(DriveAssembliesTest, ASecondCommandOutputOwnerConflicts) {
+  for (const std::uint32_t owned : {20U, 21U, 100U, 101U, 102U, 105U}) {
+    card_.ownership.owned = {owned};
+    for (const std::uint32_t consumed : {20U, 21U, 100U, 101U, 102U, 105U}) {
+      const IoConnectionSpec spec = Describe(1, consumed, 150, 4, 4);
+      EXPECT_EQ(spec.owner_conflict, consumed != owned) << owned << " owned, " << consumed << " asked";
+    }
+    EXPECT_FALSE(Describe(1, 199, 71, 0, 4).owner_conflict);  // input only
+    EXPECT_FALSE(Describe(1, 198, 71, 0, 4).owner_conflict);  // listen only
+  }
+  card_.ownership.owned.clear();
+  for (const std::uint32_t consumed : {20U, 21U, 100U, 101U, 102U, 105U}) {
+    EXPECT_FALSE(Describe(1, consumed, 150, 4, 4).owner_conflict) << consumed;
+  }
+}
+
+TEST_F(DriveAssembliesTest, ScannerOutputsWithoutDriveCommandMenusCoexistWithACommandOwner) {
+  drive_link::CardConfig config;
+  config.command_menus = {0, 0, 0, 0, 0, 0};  // no c00n targets FA06/FA07
+  card_.runtime.SetCardConfig(config);
+  card_.ownership.owned = {21};
+  EXPECT_FALSE(Describe(1, 102, 152, 12, 12).owner_conflict);
+  EXPECT_FALSE(Describe(1, 105, 155, 18, 18).owner_conflict);
+  EXPECT_TRUE(Describe(1, 100, 150, 4, 4).owner_conflict);
+  card_.ownership.owned = {102};
+  EXPECT_FALSE(Describe(1, 21, 71, 4, 4).owner_conflict);
+  EXPECT_FALSE(Describe(1, 105, 155, 18, 18).owner_conflict);
+}
+
 TEST_F(DriveAssembliesTest, AnyOutputPairsWithAnyInputAndTheConfigurationPointMayBeAbsent) {
   const IoConnectionSpec spec = Describe(std::nullopt, 21, 155, 4, 18);
   EXPECT_EQ(spec.extended, 0);
@@ -348,6 +380,23 @@ TEST_F(DriveAssembliesTest, ExplicitSetOfAFreeOutputCommandsTheDrive) {
   EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 15 30 03 61 00 08")), Hex("90 00 13 00"));  // short
   EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 47 30 03 00 00 00 00")), Hex("90 00 0E 00"));  // an input
   EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 C7 30 03")), Hex("90 00 00 00"));  // heartbeat: nothing to do
+}
+
+// docs/drive-control.md: an explicit write of a command output while a loss holds the drive: a run or
+// scanner words 0x10 and nothing handed over; a stop (21 without run bits, 100 without run/jog) taken
+// and held as the loss action's FA06.
+TEST_F(DriveAssembliesTest, ExplicitOutputWhileALossHoldsTheDriveTakesStopsOnly) {
+  card_.Drive(kStandby);
+  card_.channel.held_by_loss = true;
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 15 30 03 61 00 08 07")), Hex("90 00 10 00"));  // 21 run forward
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 64 30 03 00 C4 70 17 00 00 00 00 00 00 00 00 00 00 00 00")), Hex("90 00 10 00"));  // 100 C400h
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 66 30 03 01 00 02 00 03 00 04 00 05 00 06 00")), Hex("90 00 10 00"));
+  EXPECT_TRUE(card_.channel.commands.empty());
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 15 30 03 60 00 08 07")), Hex("90 00 00 00"));  // 21 stop
+  EXPECT_EQ(card_.channel.commands, (Commands{{0xC000, 0x1770}}));
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 04 24 64 30 03 00 88 70 17 00 00 00 00 00 00 00 00 00 00 00 00")), Hex("90 00 00 00"));  // 100 coast
+  EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0x8800, 0x1770}));
+  EXPECT_EQ(card_.channel.held_stops, (std::vector<std::uint16_t>{0xC000, 0x8800}));
 }
 
 TEST_F(DriveAssembliesTest, ExplicitGetOfAnInputIsLive) {

@@ -97,6 +97,39 @@ TEST_F(ControlSupervisorObjectTest, ExplicitRunNetCtrlAndSpeedReference) {
   EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0xC000, 0x1770}));
 }
 
+// docs/drive-control.md: while a network loss holds the drive, a run, a control-source change, a fault
+// reset or a speed is refused with 0x10 and hands nothing to the drive link; Run1/Run2 = 0 and the Reset
+// service are taken and held as the stop the loss action writes.
+TEST_F(ControlSupervisorObjectTest, WhileALossHoldsTheDriveOnlyStopsAreTaken) {
+  card_.Drive(kStandby);
+  card_.channel.held_by_loss = true;
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 05 01")), Hex("90 00 10 00"));  // NetCtrl
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 2A 24 01 30 04 01")), Hex("90 00 10 00"));  // NetRef
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 2A 24 01 30 08 08 07")), Hex("90 00 10 00"));  // 1800 rpm
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 10 00"));  // Run1
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 04 01")), Hex("90 00 10 00"));  // Run2
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 0C 01")), Hex("90 00 10 00"));  // FaultRst
+  EXPECT_TRUE(card_.channel.commands.empty());
+  EXPECT_TRUE(card_.channel.held_stops.empty());
+  EXPECT_EQ(card_.Ask(Hex("0E 03 20 29 24 01 30 03")), Hex("8E 00 00 00 00"));  // Run1 unchanged
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 00")), Hex("90 00 00 00"));  // Run1 = 0: a stop
+  EXPECT_EQ(card_.channel.commands, (Commands{{0x0000, 0x0000}}));
+  EXPECT_EQ(card_.channel.held_stops, (std::vector<std::uint16_t>{0x0000}));
+  EXPECT_EQ(card_.Ask(Hex("05 02 20 29 24 01")), Hex("85 00 00 00"));  // Reset: a stop too
+  card_.channel.held_by_loss = false;  // restored: commands are taken again
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 00 00"));
+  EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0x0400, 0x0000}));
+}
+
+TEST_F(ControlSupervisorObjectTest, RunWhileTrippedIsADeviceStateConflict) {
+  card_.Drive(kTripped);
+  EXPECT_EQ(card_.Ask(Hex("0E 03 20 29 24 01 30 06")), Hex("8E 00 00 00 07"));  // Faulted
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 10 00"));
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 04 01")), Hex("90 00 10 00"));
+  EXPECT_TRUE(card_.channel.commands.empty());
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 00")), Hex("90 00 00 00"));  // a stop is taken
+}
+
 TEST_F(ControlSupervisorObjectTest, FaultResetActsOnItsRisingEdgeWhileTripped) {
   card_.Drive(kTripped);
   EXPECT_EQ(card_.Ask(Hex("0E 03 20 29 24 01 30 0A")), Hex("8E 00 00 00 01"));  // Faulted
@@ -142,6 +175,39 @@ TEST_F(ControlSupervisorObjectTest, AConnectionsScannerWordsTakeFa06BackFromExpl
   card_.assemblies.Consume(102, Hex("00 C4 70 17 00 00 00 00 00 00 00 00"), true);
   EXPECT_EQ(card_.channel.releases, 1);
   EXPECT_FALSE(card_.runtime.drive_command_held());
+  EXPECT_FALSE(card_.runtime.run1());
+}
+
+// A card reset (f899 = 1) gives FA06/FA07 back (RegisterProxy::BeginLoad(card_reset = true)): an explicit
+// hold ends with it instead of being taken over again by the next refresh (which kept FA06/FA07 reserved
+// for nobody); the run level is gone, a later command takes the drive afresh.
+TEST_F(ControlSupervisorObjectTest, ACardResetEndsTheExplicitHold) {
+  card_.Drive(kStandby);
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 00 00"));  // Run1
+  EXPECT_TRUE(card_.runtime.drive_command_held());
+  card_.channel.taken = false;  // the card reset
+  card_.assemblies.Poll(1000);
+  card_.assemblies.Poll(2000);
+  EXPECT_EQ(card_.channel.commands, (Commands{{0x0400, 0}}));  // not taken over again
+  EXPECT_FALSE(card_.channel.taken);
+  EXPECT_FALSE(card_.runtime.drive_command_held());
+  EXPECT_FALSE(card_.runtime.run1());
+  EXPECT_EQ(card_.Ask(Hex("0E 03 20 29 24 01 30 03")), Hex("8E 00 00 00 00"));
+  // A new explicit command takes the drive command afresh.
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 2A 24 01 30 08 08 07")), Hex("90 00 00 00"));  // 1800 rpm, no run
+  EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0x0000, 0x1770}));
+  EXPECT_TRUE(card_.channel.taken);
+}
+
+// The same when the first thing after the reset is a new explicit command (no refresh in between): it is
+// taken, not dropped with the old hold, and the old Run1 level does not come back with it.
+TEST_F(ControlSupervisorObjectTest, ACommandRightAfterACardResetIsTakenAfresh) {
+  card_.Drive(kStandby);
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 00 00"));  // Run1
+  card_.channel.taken = false;  // the card reset
+  EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 05 01")), Hex("90 00 00 00"));  // NetCtrl
+  EXPECT_EQ(card_.channel.commands, (Commands{{0x0400, 0}, {0x8000, 0}}));
+  EXPECT_TRUE(card_.channel.taken);
   EXPECT_FALSE(card_.runtime.run1());
 }
 

@@ -246,6 +246,7 @@ constexpr ErrorCase kErrorCases[] = {
     {AccessError::kRefused, 0x0C, 0x19, 0x0C, 0x19},
     {AccessError::kLinkDown, 0x10, 0x10, 0x10, 0x10},
     {AccessError::kTimeout, 0x02, 0x02, 0x02, 0x02},
+    {AccessError::kNetworkLost, 0x10, 0x10, 0x10, 0x10},
 };
 
 Bytes ErrorReply(std::uint8_t service, std::uint8_t general) {

@@ -43,6 +43,8 @@ class FakeDriveCommandChannel final : public drive_link::DriveCommandChannel {
     ++releases;
   }
   bool drive_command_taken() const override { return taken; }
+  bool CommandsHeldByLoss() const override { return held_by_loss; }
+  void HoldStopDuringLoss(std::uint16_t fa06) override { held_stops.push_back(fa06); }
   void SetCommandWordsMasked(const drive_link::ScannerWords& words, std::uint8_t mask) override {
     masked.push_back(MaskedWords{words, mask});
   }
@@ -56,6 +58,8 @@ class FakeDriveCommandChannel final : public drive_link::DriveCommandChannel {
   std::vector<MaskedWords> masked;                      // every SetCommandWordsMasked
   std::vector<bool> wanted_calls;
   bool taken = false;
+  bool held_by_loss = false;
+  std::vector<std::uint16_t> held_stops;  // every HoldStopDuringLoss, in order
   bool wanted = false;
   int releases = 0;
   drive_link::DriveFeedbackWords feedback;

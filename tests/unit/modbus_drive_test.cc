@@ -162,7 +162,8 @@ INSTANTIATE_TEST_SUITE_P(ModbusEveryWriteError, ModbusDriveWriteErrorTest,
                                            ErrorCase{AccessError::kNotWritableWhileRunning, 0x04},
                                            ErrorCase{AccessError::kRefused, 0x04},
                                            ErrorCase{AccessError::kLinkDown, 0x04},
-                                           ErrorCase{AccessError::kTimeout, 0x04}));
+                                           ErrorCase{AccessError::kTimeout, 0x04},
+                                           ErrorCase{AccessError::kNetworkLost, 0x04}));
 
 class ModbusDriveReadErrorTest : public ModbusDriveTest, public ::testing::WithParamInterface<AccessError> {};
 

@@ -199,6 +199,7 @@ TEST_F(WebApplicationTest, WriteRefusalsMapToStatusCodes) {
                {AccessError::kReadOnly, "HTTP/1.1 409 Conflict"},
                {AccessError::kReservedForScanner, "HTTP/1.1 409 Conflict"},
                {AccessError::kRefused, "HTTP/1.1 409 Conflict"},
+               {AccessError::kNetworkLost, "HTTP/1.1 409 Conflict"},
                {AccessError::kTimeout, "HTTP/1.1 504 Gateway Timeout"}};
   for (const auto& c : cases) {
     drive.errors[0x0009] = c.error;

@@ -67,6 +67,10 @@ struct IoConnectionSpec {
   std::uint16_t consumed_size = 0;       // O->T data bytes; 0 is a heartbeat point
   std::uint16_t produced_size = 0;       // T->O data bytes
   std::uint16_t configuration_size = 0;  // bytes a data segment must have (0x0126 otherwise)
+  // An exclusive owner of this point would be a second master of what an open exclusive owner of another
+  // point already commands (the application's rule, e.g. two drive command outputs): refused with
+  // 0x0106 in the place of the ownership check (docs/connections.md, rule 19).
+  bool owner_conflict = false;
 };
 
 class IoApplication {

@@ -31,6 +31,8 @@ enum class AccessError : std::uint8_t {
   kRefused,                  // the inverter's 0000 otherwise, or 0003 "command error"
   kLinkDown,                 // option fault e-23 or configuration not loaded yet: nothing was sent
   kTimeout,                  // no reply after every retry
+  kNetworkLost,              // a run or speed command (FA06 with run/jog, FA07) while a network loss holds
+                             // the drive (CommandsHeldByLoss): refused locally, docs/drive-control.md
 };
 
 const char* AccessErrorName(AccessError error);
@@ -118,6 +120,14 @@ class DriveCommandChannel {
   // Gives FA06/FA07 back (to the scanner words, if a menu targets them). Nothing is written for it.
   virtual void ReleaseDriveCommand() = 0;
   virtual bool drive_command_taken() const = 0;
+  // A network loss was reported and not restored, and its c101 action (other than 1, continue) runs or
+  // will run when c100 is over: the loss supervision owns FA06. Run and speed commands of the explicit
+  // paths are refused meanwhile; a stop is taken (docs/drive-control.md).
+  virtual bool CommandsHeldByLoss() const = 0;
+  // An explicit stop accepted while CommandsHeldByLoss: written to FA06 at once and, until the network is
+  // restored, in place of the action's FA06 (c101 = 0, 2, 3, 5; with 4 after the err8 request), so that
+  // the action cannot start the drive again (c101 = 5). Fault-reset bit cleared. Ignored otherwise.
+  virtual void HoldStopDuringLoss(std::uint16_t fa06) = 0;
   // As ScannerImage::SetCommandWords for the words whose bit is set in `mask` (bit i = word i + 1): the
   // others are not written while the last call's mask leaves them out (an assembly 100 of fewer than
   // 8 words carries fewer scanner words). SetCommandWords is this with every bit set.

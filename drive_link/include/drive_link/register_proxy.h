@@ -80,7 +80,7 @@ class ConfigListener {
   virtual void OnConfigLoaded(const ParsedConfig& parsed) = 0;
 };
 
-inline constexpr std::size_t kAccessErrorCount = static_cast<std::size_t>(AccessError::kTimeout) + 1;
+inline constexpr std::size_t kAccessErrorCount = static_cast<std::size_t>(AccessError::kNetworkLost) + 1;
 
 struct ProxyCounters {
   std::uint32_t config_loads = 0;      // configurations read and parsed
@@ -163,6 +163,8 @@ class RegisterProxy final : public DriveRegisters,
   void SetDriveCommand(const DriveCommandWords& words) override;
   void ReleaseDriveCommand() override;
   bool drive_command_taken() const override { return drive_taken_; }
+  bool CommandsHeldByLoss() const override;
+  void HoldStopDuringLoss(std::uint16_t fa06) override;
   void SetCommandWordsMasked(const ScannerWords& words, std::uint8_t mask) override;
   void SetFeedbackWanted(bool wanted) override;
   DriveFeedbackWords DriveFeedback() const override;
@@ -294,7 +296,7 @@ class RegisterProxy final : public DriveRegisters,
   void DecideLossAction();
   std::uint16_t LossActionFa06() const;
   void OnLossCheckRead(std::uint8_t index, const Completion& completion);
-  void OnLossActionWritten(const Completion& completion, hal::Micros now);
+  void OnLossActionWritten(std::uint8_t index, const Completion& completion, hal::Micros now);
 
   LinkClient link_;
   ProxyConfig config_;
@@ -379,6 +381,12 @@ class RegisterProxy final : public DriveRegisters,
   std::uint16_t checked_cmod_ = 0;
   std::uint16_t checked_fmod_ = 0;
   std::uint8_t words_during_action_ = 0;  // bit per word: sent again while the action was in force
+  // An explicit stop taken while the loss holds FA06 (HoldStopDuringLoss): the action writes it instead
+  // of its own FA06; with c101 = 4 it is written after the err8 request (index 1 of kLossAction).
+  std::uint16_t stop_hold_ = 0;
+  bool stop_hold_valid_ = false;
+  bool stop_hold_written_ = false;
+  hal::Micros stop_hold_written_at_ = 0;
 
   // On-demand accesses.
   std::array<Access, kMaxPendingAccesses> accesses_{};

@@ -91,6 +91,12 @@ inline constexpr std::uint16_t kFrequencyPriority = 1u << 14;
 inline constexpr std::uint16_t kCommandPriority = 1u << 15;
 }  // namespace command_bit
 
+// An FA06 word that does not run the drive: neither run (bit 10) nor jog (bit 8). With command priority
+// (bit 15) the option stops it; without, cmod/fmod decide (what c101 = 0 writes, seed 000 §3.2.3).
+constexpr bool IsStopCommand(std::uint16_t fa06) {
+  return (fa06 & (command_bit::kRun | command_bit::kJog)) == 0;
+}
+
 // FD01 bits, seed 000 §3.2.4.7.
 namespace status_bit {
 inline constexpr std::uint16_t kFailureFl = 1u << 0;

@@ -102,13 +102,26 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
   // Whether explicit messaging may write output `instance` (assembly attribute 3): 20/21/100/101 when
   // no exclusive owner consumes any of them, 102/105 when none consumes that one, heartbeats always.
   bool ExplicitWriteAllowed(std::uint32_t instance) const;
+  // Whether an explicit write of output `instance` would run the drive, change its speed or write
+  // scanner words while a network loss holds the drive (DriveCommandChannel::CommandsHeldByLoss): such a
+  // write is refused with 0x10, a stop passes (docs/drive-control.md).
+  bool ExplicitOutputHeldByLoss(std::uint32_t instance, std::span<const std::uint8_t> data) const;
   // Whether explicit messaging may command the drive (0x29/0x2A Sets, Reset): no exclusive owner
-  // consumes 20, 21, 100 or 101.
+  // consumes a command output (CommandsDrive).
   bool ExplicitControlAllowed() const;
-  // 0x29 attributes 3, 4, 5, 12 and 0x2A attribute 4. 0x10 when ExplicitControlAllowed() is false.
+  // Whether output `output` commands the drive (writes FA06/FA07): 20, 21, 100, 101, and 102/105 while a
+  // c00n menu targets FA06 or FA07.
+  bool CommandsDrive(std::uint32_t output) const;
+  // Whether an exclusive owner of `output` would be a second master of the drive command: `output`
+  // commands the drive and an exclusive owner of another command output is open (Forward_Open 0x0106,
+  // DriveAssemblies::Describe).
+  bool DriveCommandOwnedBesides(std::uint32_t output) const;
+  // 0x29 attributes 3, 4, 5, 12 and 0x2A attribute 4. 0x10 when ExplicitControlAllowed() is false, and
+  // while a network loss holds the drive for everything but Run1/Run2 = 0 (a stop is never refused).
   // FaultRst acts on 0 -> 1 only (one fault reset while the drive is tripped).
   ServiceStatus SetControl(ControlAttribute attribute, bool value);
-  // 0x2A attribute 8 (rpm; negative: 0 Hz). 0x10 when ExplicitControlAllowed() is false.
+  // 0x2A attribute 8 (rpm; negative: 0 Hz). 0x10 when ExplicitControlAllowed() is false or a network
+  // loss holds the drive.
   ServiceStatus SetSpeedReference(std::int16_t rpm);
   // 0x29 Reset service: the supervisor back to Startup, Run1/Run2/FaultRst back to 0 (FA06 loses its
   // run bits when explicit messaging holds it). 0x10 when ExplicitControlAllowed() is false.
@@ -167,6 +180,8 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
   bool ScannerTargetsDriveCommand() const;
   void Take(CommandOrigin origin, std::uint32_t instance);
   void Release();
+  void EndExplicitHoldAfterCardReset();
+  void HoldStopDuringLoss();
   SupervisorOutputs Step(bool fault_reset_event);
   void WriteDriveCommand();
   void ApplyCipSpeed(const DriveCommand& command, const OutputEvents& events);

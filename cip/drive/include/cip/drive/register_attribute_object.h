@@ -47,6 +47,7 @@ constexpr ServiceStatus AccessErrorStatus(drive_link::AccessError error, AccessK
     case AccessError::kReservedForScanner:       // owned by the cyclic exchange, as an assembly owned
                                                  // by an I/O connection is
     case AccessError::kLinkDown:                 // nothing reaches the inverter until the link is back
+    case AccessError::kNetworkLost:              // the loss action owns FA06 until the network is back
       return Error(GeneralStatus::kDeviceStateConflict);
     case AccessError::kReadOnly:
       return Error(GeneralStatus::kAttributeNotSettable);
