@@ -6,8 +6,9 @@
 
 namespace firmware {
 
-base::Status EventLoop::AddService(Service& service) {
+base::Status EventLoop::AddService(Service& service, PollWhen when) {
   if (service_count_ == services_.size()) return base::ResourceExhausted();
+  when_[service_count_] = when;
   services_[service_count_++] = &service;
   return base::OkStatus();
 }
@@ -28,13 +29,43 @@ hal::Micros EventLoop::NextDeadline(hal::Micros now) const {
 
 void EventLoop::PollDue(hal::Micros now) {
   for (std::size_t i = 0; i < service_count_; ++i) {
-    if (services_[i]->NextDeadline() <= now) services_[i]->Poll(now);
+    if (services_[i]->NextDeadline() <= now) {
+      ++stats_.polls;
+      services_[i]->Poll(now);
+    }
+  }
+}
+
+void EventLoop::PollServices(hal::Micros now, bool event) {
+  if (probe_ != nullptr && probe_->TakeEvent()) event = true;
+  if (event) ++stats_.event_passes;
+  for (std::size_t i = 0; i < service_count_; ++i) {
+    Service& service = *services_[i];
+    const PollWhen when = when_[i];
+    const bool due = when == PollWhen::kEveryPass || service.NextDeadline() <= now;
+    if (!due && !(event && when == PollWhen::kDueOrEvent)) continue;
+    ++stats_.polls;
+    service.Poll(now);
+    if (when == PollWhen::kEveryPass) {
+      if (probe_ != nullptr && probe_->TakeEvent()) {
+        if (!event) ++stats_.event_passes;
+        event = true;
+      }
+    } else if (when == PollWhen::kDueOrEvent && !event) {
+      // Polled at its deadline: whatever it changed, the services after it look at in this pass.
+      ++stats_.event_passes;
+      event = true;
+    }
   }
 }
 
 void EventLoop::RunOnce() {
   ++stats_.passes;
-  if (netif_.SyncLinkState()) ++stats_.link_changes;
+  bool event = false;
+  if (netif_.SyncLinkState()) {
+    ++stats_.link_changes;
+    event = true;
+  }
 
   // Frames in batches; after each full batch the services whose deadline has passed run at once, so
   // an I/O production slot waits for at most one batch of requests, not for a whole pass.
@@ -47,11 +78,17 @@ void EventLoop::RunOnce() {
     PollDue(clock_.NowMicros());
   }
   stats_.frames_in += frames;
+  if (frames > 0) event = true;
 
-  sys_check_timeouts();
+  // lwIP's timers call into the services' callbacks (a retransmission given up, a TCP poll, an ARP
+  // answer that releases queued output): a pass that runs one is an event like a frame.
+  if (sys_timeouts_sleeptime() == 0) {
+    sys_check_timeouts();
+    event = true;
+  }
 
   const hal::Micros now = clock_.NowMicros();
-  for (std::size_t i = 0; i < service_count_; ++i) services_[i]->Poll(now);
+  PollServices(now, event);
 
   if (frames == kMaxFramesPerPass) {
     ++stats_.bounded_passes;

@@ -21,6 +21,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       loop_(devices.clock, devices.waiter, netif_),
       proxy_(devices.drive_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{}),
       proxy_service_(proxy_),
+      drive_events_(proxy_),
       modbus_server_(proxy_, proxy_, proxy_),
       modbus_service_(modbus_server_, devices.clock, {.port = 502, .keepalive = options.keepalive}),
       parameter_writer_(proxy_),
@@ -72,19 +73,22 @@ base::Status Card::Start() {
   if (base::Status started = proxy_.Start(clock_.NowMicros()); !started.ok()) return started;
 
   failed_part_ = "event loop";
-  // The loop polls the services in this order on each pass.
-  const auto add = [this](Service& service) { return loop_.AddService(service); };
-  for (Service* service : {static_cast<Service*>(&proxy_service_), static_cast<Service*>(&modbus_service_)}) {
-    if (base::Status added = add(*service); !added.ok()) return added;
-  }
+  // The loop polls the services in this order (event_loop.h "Which services a pass polls"): the drive
+  // link on every pass (its bytes), the I/O productions at their slots only, the rest when due or
+  // after an event.
+  const auto add = [this](Service& service, PollWhen when) { return loop_.AddService(service, when); };
+  if (base::Status added = add(proxy_service_, PollWhen::kEveryPass); !added.ok()) return added;
+  if (base::Status added = add(modbus_service_, PollWhen::kDueOrEvent); !added.ok()) return added;
   for (Service* service : eip_card_.services()) {
-    if (base::Status added = add(*service); !added.ok()) return added;
+    const PollWhen when = service == eip_card_.production_service() ? PollWhen::kDueOnly : PollWhen::kDueOrEvent;
+    if (base::Status added = add(*service, when); !added.ok()) return added;
   }
   for (Service* service : {static_cast<Service*>(&parameter_writer_), static_cast<Service*>(&web_application_),
                            static_cast<Service*>(&web_service_), static_cast<Service*>(&publisher_),
                            static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_)}) {
-    if (base::Status added = add(*service); !added.ok()) return added;
+    if (base::Status added = add(*service, PollWhen::kDueOrEvent); !added.ok()) return added;
   }
+  loop_.SetEventProbe(&drive_events_);
   indicators_.RestartPowerUpTest(clock_.NowMicros());
   failed_part_ = "";
   return base::OkStatus();
@@ -108,6 +112,15 @@ std::optional<hal::ResetKind> Card::RunOnce() {
   }
   loop_.RunOnce();
   return std::nullopt;
+}
+
+bool Card::DriveLinkEvents::TakeEvent() {
+  const drive_link::LinkCounters& counters = proxy_.link().counters();
+  const drive_link::LinkState state = proxy_.link().state();
+  if (counters.completed == completed_ && state == state_) return false;
+  completed_ = counters.completed;
+  state_ = state;
+  return true;
 }
 
 CardReadiness Card::Readiness() const {

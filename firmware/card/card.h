@@ -95,7 +95,9 @@ class Card {
 
   // A service of the main, polled by the card's loop (before Start()). kResourceExhausted when the
   // loop is full.
-  base::Status AddService(Service& service) { return loop_.AddService(service); }
+  base::Status AddService(Service& service, PollWhen when = PollWhen::kEveryPass) {
+    return loop_.AddService(service, when);
+  }
 
   // Registers the CIP classes and assemblies, loads the web passwords and starts the drive link.
   // Fails only on a wiring mistake or a drive link that cannot start; failed_part() names the part.
@@ -138,6 +140,19 @@ class Card {
   struct LwipStart {
     explicit LwipStart(const CardDevices& devices);
   };
+  // The drive link's events for the loop: a transaction finished (a reply, a timeout, a failure) or
+  // the link changed state. The front ends wait for exactly these (drive_link completions, the drive
+  // status, the configuration load), so they are polled once per event, not on every serial byte.
+  class DriveLinkEvents final : public EventProbe {
+   public:
+    explicit DriveLinkEvents(const drive_link::RegisterProxy& proxy) : proxy_(proxy) {}
+    bool TakeEvent() override;
+
+   private:
+    const drive_link::RegisterProxy& proxy_;
+    std::uint32_t completed_ = 0;
+    drive_link::LinkState state_{};
+  };
   class ResetLatch final : public hal::ResetControl {
    public:
     void RequestReset(hal::ResetKind kind) override { kind_ = kind; }
@@ -158,6 +173,7 @@ class Card {
   ResetLatch reset_;
   drive_link::RegisterProxy proxy_;
   PolledService<drive_link::RegisterProxy> proxy_service_;
+  DriveLinkEvents drive_events_;
   modbus::Server modbus_server_;
   ModbusTcpService modbus_service_;
   ParameterWriter parameter_writer_;

@@ -198,7 +198,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   std::optional<InverterStoreCheck> store_check;
   if (inverter) {
     store_check.emplace(*inverter);
-    card->AddService(*store_check).IgnoreError();  // stores the inverter's EEPROM image when due
+    card->AddService(*store_check, firmware::PollWhen::kDueOnly).IgnoreError();  // stores the inverter's EEPROM image when due
   }
   if (base::Status started = card->Start(); !started.ok()) {
     error = std::string(card->failed_part()) + ": " + base::StatusName(started);
