@@ -9,6 +9,8 @@ namespace firmware {
 base::Status EventLoop::AddService(Service& service, PollWhen when) {
   if (service_count_ == services_.size()) return base::ResourceExhausted();
   when_[service_count_] = when;
+  deadlines_[service_count_] = 0;
+  polled_once_[service_count_] = false;
   services_[service_count_++] = &service;
   return base::OkStatus();
 }
@@ -21,41 +23,48 @@ hal::Micros EventLoop::NextDeadline(hal::Micros now) const {
     // which its timer is due, never before it.
     deadline = now + static_cast<hal::Micros>(lwip_sleep_ms) * hal::kMicrosPerMilli;
   }
-  for (std::size_t i = 0; i < service_count_; ++i) {
-    deadline = std::min(deadline, services_[i]->NextDeadline());
-  }
+  for (std::size_t i = 0; i < service_count_; ++i) deadline = std::min(deadline, deadlines_[i]);
   return deadline;
 }
 
 void EventLoop::PollDue(hal::Micros now) {
   for (std::size_t i = 0; i < service_count_; ++i) {
-    if (services_[i]->NextDeadline() <= now) {
+    // Frames came in: any service's deadline may have moved (a connection opened).
+    deadlines_[i] = services_[i]->NextDeadline();
+    if (deadlines_[i] <= now) {
       ++stats_.polls;
       services_[i]->Poll(now);
+      deadlines_[i] = services_[i]->NextDeadline();
     }
   }
 }
 
 void EventLoop::PollServices(hal::Micros now, bool event) {
   if (probe_ != nullptr && probe_->TakeEvent()) event = true;
-  if (event) ++stats_.event_passes;
+  const bool event_at_start = event;
   for (std::size_t i = 0; i < service_count_; ++i) {
     Service& service = *services_[i];
     const PollWhen when = when_[i];
-    const bool due = when == PollWhen::kEveryPass || service.NextDeadline() <= now;
+    if (event) deadlines_[i] = service.NextDeadline();  // an event may have moved it
+    const bool due = when == PollWhen::kEveryPass || deadlines_[i] <= now || !polled_once_[i];
+    polled_once_[i] = true;
     if (!due && !(event && when == PollWhen::kDueOrEvent)) continue;
     ++stats_.polls;
     service.Poll(now);
+    deadlines_[i] = service.NextDeadline();
     if (when == PollWhen::kEveryPass) {
-      if (probe_ != nullptr && probe_->TakeEvent()) {
-        if (!event) ++stats_.event_passes;
-        event = true;
-      }
-    } else if (when == PollWhen::kDueOrEvent && !event) {
-      // Polled at its deadline: whatever it changed, the services after it look at in this pass.
-      ++stats_.event_passes;
+      if (probe_ != nullptr && probe_->TakeEvent()) event = true;
+    } else if (when == PollWhen::kDueOrEvent) {
+      // Polled at its deadline or for an event: what it changed, the services after it look at in
+      // this pass.
       event = true;
     }
+  }
+  if (!event) return;
+  ++stats_.event_passes;
+  // The services before the first event of the pass may have had their deadlines moved by it.
+  if (!event_at_start) {
+    for (std::size_t i = 0; i < service_count_; ++i) deadlines_[i] = services_[i]->NextDeadline();
   }
 }
 

@@ -21,6 +21,7 @@
 //     transaction or changed state), or an earlier service of this pass was polled at its deadline
 //     (it may have changed state that later services follow: a connection timed out, an address phase);
 //   - kDueOnly: when its deadline has passed (I/O production: its poll changes nothing others follow).
+// Every service is polled on the first pass after it was added (its deadline is learnt there).
 // Work that follows a change is thus done once per change; a pass woken by one deadline polls only
 // the services that are due, unless one of them changes something.
 #pragma once
@@ -42,7 +43,10 @@ class Service {
   // Does whatever is due at `now`. Called once per pass, whatever woke the loop, and also between
   // batches of received frames when NextDeadline() has passed.
   virtual void Poll(hal::Micros now) = 0;
-  // The next instant at which Poll() must run even if no I/O arrives; hal::kNever for none.
+  // The next instant at which Poll() must run even if no I/O arrives; hal::kNever for none. For a
+  // service added as kDueOrEvent or kDueOnly it may change only in its Poll() or with an event (a
+  // frame, an lwIP timer, a drive-link event, another service's poll): the loop keeps the value
+  // between passes without events.
   virtual hal::Micros NextDeadline() const = 0;
 };
 
@@ -94,6 +98,8 @@ class EventLoop {
   CardNetif& netif_;
   std::array<Service*, kMaxServices> services_{};
   std::array<PollWhen, kMaxServices> when_{};
+  std::array<hal::Micros, kMaxServices> deadlines_{};  // NextDeadline() as of the last poll or event
+  std::array<bool, kMaxServices> polled_once_{};
   EventProbe* probe_ = nullptr;
   std::size_t service_count_ = 0;
   hal::Micros last_deadline_ = hal::kNever;

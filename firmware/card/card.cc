@@ -114,12 +114,32 @@ std::optional<hal::ResetKind> Card::RunOnce() {
   return std::nullopt;
 }
 
+Card::DriveLinkEvents::Picture Card::DriveLinkEvents::Take() const {
+  const drive_link::ProxyCounters& counters = proxy_.counters();
+  Picture now;
+  now.link = proxy_.link().state();
+  now.config_loaded = proxy_.config_loaded();
+  now.drive_status_known = proxy_.drive_status_known();
+  now.drive_command_taken = proxy_.drive_command_taken();
+  now.loss_action_active = proxy_.loss_action_active();
+  now.drive_status = proxy_.drive_status();
+  now.config_loads = counters.config_loads;
+  now.monitor_words = proxy_.MonitorWords();
+  const drive_link::DriveFeedbackWords feedback = proxy_.DriveFeedback();
+  now.feedback_fd00 = feedback.fd00;
+  now.feedback_fe02 = feedback.fe02;
+  now.feedback_known = feedback.known;
+  now.accesses_done = counters.accesses_ok;
+  for (std::uint32_t errors : counters.access_errors) now.accesses_done += errors;
+  now.writes_done = counters.command_writes + counters.command_errors + counters.owned_writes +
+                    counters.owned_errors + counters.loss_action_writes + counters.loss_action_errors;
+  return now;
+}
+
 bool Card::DriveLinkEvents::TakeEvent() {
-  const drive_link::LinkCounters& counters = proxy_.link().counters();
-  const drive_link::LinkState state = proxy_.link().state();
-  if (counters.completed == completed_ && state == state_) return false;
-  completed_ = counters.completed;
-  state_ = state;
+  const Picture now = Take();
+  if (now == seen_) return false;
+  seen_ = now;
   return true;
 }
 

@@ -140,18 +140,37 @@ class Card {
   struct LwipStart {
     explicit LwipStart(const CardDevices& devices);
   };
-  // The drive link's events for the loop: a transaction finished (a reply, a timeout, a failure) or
-  // the link changed state. The front ends wait for exactly these (drive_link completions, the drive
-  // status, the configuration load), so they are polled once per event, not on every serial byte.
+  // The drive link's events for the loop: what the front ends wait for changed. The link state, the
+  // configuration load, the drive status word, the monitor words, the drive feedback, an on-demand
+  // access or a command write finished, the loss action. Not every serial transaction or exchange
+  // cycle: the cyclic reads of an idle drive return what they returned before, and polling every
+  // front end for each of them was most of the card's idle work.
   class DriveLinkEvents final : public EventProbe {
    public:
     explicit DriveLinkEvents(const drive_link::RegisterProxy& proxy) : proxy_(proxy) {}
     bool TakeEvent() override;
 
    private:
+    struct Picture {
+      drive_link::LinkState link{};
+      bool config_loaded = false;
+      bool drive_status_known = false;
+      bool drive_command_taken = false;
+      bool loss_action_active = false;
+      std::uint16_t drive_status = 0;
+      std::uint32_t config_loads = 0;
+      drive_link::ScannerWords monitor_words{};
+      std::uint16_t feedback_fd00 = 0;
+      std::uint16_t feedback_fe02 = 0;
+      bool feedback_known = false;
+      std::uint32_t accesses_done = 0;
+      std::uint32_t writes_done = 0;
+      bool operator==(const Picture&) const = default;
+    };
+    Picture Take() const;
+
     const drive_link::RegisterProxy& proxy_;
-    std::uint32_t completed_ = 0;
-    drive_link::LinkState state_{};
+    Picture seen_;
   };
   class ResetLatch final : public hal::ResetControl {
    public:
