@@ -40,7 +40,8 @@ void EventLoop::PollDue(hal::Micros now) {
 }
 
 void EventLoop::PollServices(hal::Micros now, bool event) {
-  if (probe_ != nullptr && probe_->TakeEvent()) event = true;
+  // The probe is asked after the kEveryPass services only: what the others change in the drive link
+  // (an access refused at once) reaches them when the drive link has run.
   const bool event_at_start = event;
   for (std::size_t i = 0; i < service_count_; ++i) {
     Service& service = *services_[i];

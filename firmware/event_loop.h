@@ -53,7 +53,7 @@ class Service {
 enum class PollWhen : std::uint8_t { kEveryPass, kDueOrEvent, kDueOnly };
 
 // Something that happens without a frame and that kDueOrEvent services wait for. Asked after each
-// kEveryPass service's poll.
+// kEveryPass service's poll (the drive link's changes happen there).
 class EventProbe {
  public:
   virtual ~EventProbe() = default;

@@ -137,6 +137,10 @@ Card::DriveLinkEvents::Picture Card::DriveLinkEvents::Take() const {
 }
 
 bool Card::DriveLinkEvents::TakeEvent() {
+  const Activity activity{proxy_.link().counters().completed, proxy_.counters().accesses,
+                          proxy_.counters().pool_full, proxy_.link().state(), proxy_.loss_action_active()};
+  if (activity == activity_) return false;
+  activity_ = activity;
   const Picture now = Take();
   if (now == seen_) return false;
   seen_ = now;

@@ -167,9 +167,21 @@ class Card {
       std::uint32_t writes_done = 0;
       bool operator==(const Picture&) const = default;
     };
+    // What moves whenever the picture may have changed: a transaction finished, the link state, an
+    // access accepted (a local refusal finishes without the link), the loss action. Compared first,
+    // so that a pass without drive-link activity costs a few loads.
+    struct Activity {
+      std::uint32_t completed = 0;
+      std::uint32_t accesses = 0;
+      std::uint32_t pool_full = 0;
+      drive_link::LinkState link{};
+      bool loss_action_active = false;
+      bool operator==(const Activity&) const = default;
+    };
     Picture Take() const;
 
     const drive_link::RegisterProxy& proxy_;
+    Activity activity_;
     Picture seen_;
   };
   class ResetLatch final : public hal::ResetControl {
