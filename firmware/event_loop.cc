@@ -42,31 +42,34 @@ void EventLoop::PollDue(hal::Micros now) {
 void EventLoop::PollServices(hal::Micros now, bool event) {
   // The probe is asked after the kEveryPass services only: what the others change in the drive link
   // (an access refused at once) reaches them when the drive link has run.
-  const bool event_at_start = event;
+  // The services before the one whose poll raised the event did not see it: their deadlines are read
+  // again at the end of the pass.
+  std::size_t unseen = event ? 0 : service_count_;
   for (std::size_t i = 0; i < service_count_; ++i) {
     Service& service = *services_[i];
     const PollWhen when = when_[i];
-    if (event) deadlines_[i] = service.NextDeadline();  // an event may have moved it
+    const bool woken = event && when == PollWhen::kDueOrEvent;
+    // An event may have moved the deadline of a service it does not wake (an I/O slot scheduled by a
+    // Forward_Open); one it wakes reports its deadline after the poll.
+    if (event && when == PollWhen::kDueOnly) deadlines_[i] = service.NextDeadline();
     const bool due = when == PollWhen::kEveryPass || deadlines_[i] <= now || !polled_once_[i];
     polled_once_[i] = true;
-    if (!due && !(event && when == PollWhen::kDueOrEvent)) continue;
+    if (!due && !woken) continue;
     ++stats_.polls;
     service.Poll(now);
     deadlines_[i] = service.NextDeadline();
-    if (when == PollWhen::kEveryPass) {
-      if (probe_ != nullptr && probe_->TakeEvent()) event = true;
-    } else if (when == PollWhen::kDueOrEvent) {
-      // Polled at its deadline or for an event: what it changed, the services after it look at in
-      // this pass.
+    if (event) continue;
+    // A drive-link event, or a service polled at its deadline: what it changed, the services after
+    // it look at in this pass.
+    if ((when == PollWhen::kEveryPass && probe_ != nullptr && probe_->TakeEvent()) ||
+        when == PollWhen::kDueOrEvent) {
       event = true;
+      unseen = i;
     }
   }
   if (!event) return;
   ++stats_.event_passes;
-  // The services before the first event of the pass may have had their deadlines moved by it.
-  if (!event_at_start) {
-    for (std::size_t i = 0; i < service_count_; ++i) deadlines_[i] = services_[i]->NextDeadline();
-  }
+  for (std::size_t i = 0; i < unseen; ++i) deadlines_[i] = services_[i]->NextDeadline();
 }
 
 void EventLoop::RunOnce() {
