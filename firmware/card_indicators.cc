@@ -32,10 +32,9 @@ net::LedInputs CardIndicators::Gather() const {
     in.any_link_up = in.any_link_up || sources_.port.Link(static_cast<hal::PortId>(i)).up;
   }
   if (protocol_ == net::Protocol::kEtherNetIp && sources_.connections != nullptr) {
-    std::array<cip::ConnectionInfo, 1> one{};
     if (sources_.connections->IoStatus() == cip::ExtendedDeviceStatus::kFaultedIoConnection) {
       in.connections = net::ConnectionState::kTimedOut;
-    } else if (sources_.connections->ListConnections(one) > 0) {
+    } else if (sources_.connections->AnyOpen()) {
       in.connections = net::ConnectionState::kEstablished;
     }
   } else if (protocol_ == net::Protocol::kModbusTcp && sources_.proxy.loss_action_active()) {
