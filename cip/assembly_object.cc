@@ -34,6 +34,13 @@ base::Status AssemblyObject::Register(std::uint32_t instance, AssemblyDirection 
   return base::OkStatus();
 }
 
+base::Status AssemblyObject::RegisterInput(std::uint32_t instance, std::span<std::uint8_t> data,
+                                           AssemblyInputSource& source) {
+  const base::Status registered = Register(instance, AssemblyDirection::kInput, data);
+  if (registered.ok()) entries_[count_ - 1].source = &source;
+  return registered;
+}
+
 const AssemblyObject::Entry* AssemblyObject::Find(std::uint32_t instance) const {
   for (std::size_t i = 0; i < count_; ++i) {
     if (entries_[i].instance == instance) return &entries_[i];
@@ -62,7 +69,10 @@ std::span<const AttributeSpec> AssemblyObject::InstanceAttributes(std::uint32_t 
 void AssemblyObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) {
   const Entry* entry = Find(instance);
   if (entry == nullptr) return;
-  if (id == kAttributeData) out.Bytes(entry->data);
+  if (id == kAttributeData) {
+    if (entry->source != nullptr) entry->source->RefreshInput(instance, entry->data);
+    out.Bytes(entry->data);
+  }
   if (id == kAttributeSize) out.U16(static_cast<std::uint16_t>(entry->data.size()));
 }
 

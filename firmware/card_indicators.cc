@@ -32,10 +32,9 @@ net::LedInputs CardIndicators::Gather() const {
     in.any_link_up = in.any_link_up || sources_.port.Link(static_cast<hal::PortId>(i)).up;
   }
   if (protocol_ == net::Protocol::kEtherNetIp && sources_.connections != nullptr) {
-    std::array<cip::ConnectionInfo, 1> one{};
     if (sources_.connections->IoStatus() == cip::ExtendedDeviceStatus::kFaultedIoConnection) {
       in.connections = net::ConnectionState::kTimedOut;
-    } else if (sources_.connections->ListConnections(one) > 0) {
+    } else if (sources_.connections->AnyOpen()) {
       in.connections = net::ConnectionState::kEstablished;
     }
   } else if (protocol_ == net::Protocol::kModbusTcp && sources_.proxy.loss_action_active()) {
@@ -45,10 +44,26 @@ net::LedInputs CardIndicators::Gather() const {
 }
 
 void CardIndicators::Poll(hal::Micros now) {
-  model_.Update(Gather(), now);
+  // Polled after every event of the loop; the LEDs change only with their inputs or their pattern's
+  // next step, so an unchanged picture costs the comparison and nothing more.
+  const net::LedInputs inputs = Gather();
+  const std::uint8_t links = PortLinks();
+  if (now < next_change_ && inputs == model_.Inputs() && links == port_links_) return;
+  port_links_ = links;
+  model_.Update(inputs, now);
   model_.Drive(leds_, now);
   DriveLinkLeds(now);
   next_change_ = model_.NextChange(now);
+}
+
+std::uint8_t CardIndicators::PortLinks() const {
+  std::uint8_t links = 0;
+  for (std::size_t i = 0; i < sources_.port.PortCount() && i < hal::kMaxPorts; ++i) {
+    const hal::LinkState link = sources_.port.Link(static_cast<hal::PortId>(i));
+    if (link.up) links = static_cast<std::uint8_t>(links | (1U << (2 * i)));
+    if (link.speed == hal::LinkSpeed::k10Mbps) links = static_cast<std::uint8_t>(links | (2U << (2 * i)));
+  }
+  return links;
 }
 
 void CardIndicators::DriveLinkLeds(hal::Micros now) {

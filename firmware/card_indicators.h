@@ -48,12 +48,15 @@ class CardIndicators final : public Service, public ConfigurableService {
 
  private:
   void DriveLinkLeds(hal::Micros now);
+  // The ports' link state as the LNK LEDs show it: up and 10 Mbit/s per port, one bit each.
+  std::uint8_t PortLinks() const;
 
   IndicatorSources sources_;
   hal::Leds& leds_;
   net::LedModel model_;
   net::Protocol protocol_ = net::Protocol::kModbusTcp;
   hal::Micros next_change_ = 0;
+  std::uint8_t port_links_ = 0xFF;  // PortLinks() at the last update (0xFF: none yet)
 };
 
 }  // namespace firmware

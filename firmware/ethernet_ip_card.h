@@ -72,6 +72,8 @@ class EtherNetIpCard final : private DriveControlListener {
 
   std::span<ConfigurableService* const> front_ends() { return front_ends_; }
   std::span<Service* const> services() { return services_; }
+  // The one of services() whose poll only sends due I/O productions (nothing else follows it).
+  const Service* production_service() const { return &io_; }
   DriveIdentitySink& identity_sink() { return identity_; }
 
   // For the control socket's `stats` and the web page.

@@ -143,7 +143,12 @@ bool InverterProtocolServer::TakeFault(Fault::Kind kind, hal::Micros* delay_us) 
 }
 
 void InverterProtocolServer::Poll(hal::Micros now) {
-  model_.Advance(now);
+  // The model moves when a request looks at it (OnFrame) and once per tick, not on every poll:
+  // Advance applies whatever fell due in between (a loss action at its deadline) at its instant.
+  if (now >= next_model_tick_) {
+    model_.Advance(now);
+    next_model_tick_ = now + kModelTick;
+  }
   const wire::ReadOutcome read = reader_.Poll(now, *this);
   counters_.rx_errors += read.damaged_bytes;
   if (read.partial_frame_timed_out) ++counters_.timeouts;
@@ -162,6 +167,7 @@ hal::Micros InverterProtocolServer::NextDeadline() const {
 
 void InverterProtocolServer::OnFrame(std::span<const std::uint8_t> frame, hal::Micros now) {
   ++counters_.requests;
+  model_.Advance(now);
   const wire::DecodedRequest decoded = wire::DecodeRequest(frame);
   const bool block = decoded.kind == wire::RequestKind::kBlock;
   const wire::Mode mode = block ? wire::Mode::kBinary : decoded.request.envelope.mode;

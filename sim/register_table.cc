@@ -1,6 +1,7 @@
 #include "sim/register_table.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <initializer_list>
 #include <iterator>
@@ -50,6 +51,22 @@ static_assert(NoNumberEndsInAToF(), "communication numbers ending in A-F do not 
 static_assert(AllLimitsHold(), "every register needs min <= default <= max within one 16-bit word");
 static_assert(MonitorsAreReadOnly(), "monitors and trip-hold registers are never host-writable");
 
+// Every 16-bit number to its row (kNoRow: none): one load per lookup. The simulator looks registers up
+// on every request and every model step, so a search per lookup was most of its work. 128 KiB of
+// constants in a host process; the card never links the simulator.
+constexpr std::uint16_t kNoRow = 0xFFFF;
+static_assert(kTable.size() < kNoRow);
+struct RowIndex {
+  std::array<std::uint16_t, 0x10000> row{};
+};
+constexpr RowIndex BuildRowIndex() {
+  RowIndex index;
+  for (std::uint16_t& row : index.row) row = kNoRow;
+  for (std::size_t i = 0; i < kTable.size(); ++i) index.row[kTable[i].number] = static_cast<std::uint16_t>(i);
+  return index;
+}
+constexpr RowIndex kRowIndex = BuildRowIndex();
+
 char Lower(char c) { return (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c; }
 
 bool EqualsIgnoringCase(std::string_view a, std::string_view b) {
@@ -62,10 +79,8 @@ bool EqualsIgnoringCase(std::string_view a, std::string_view b) {
 std::span<const RegisterInfo> AllRegisters() { return kTable; }
 
 const RegisterInfo* FindRegister(std::uint16_t number) {
-  const auto it = std::lower_bound(kTable.begin(), kTable.end(), number,
-                                   [](const RegisterInfo& r, std::uint16_t n) { return r.number < n; });
-  if (it == kTable.end() || it->number != number) return nullptr;
-  return &*it;
+  const std::uint16_t row = kRowIndex.row[number];
+  return row == kNoRow ? nullptr : &kTable[row];
 }
 
 const RegisterInfo* FindRegister(std::uint16_t number, Model model) {

@@ -59,12 +59,12 @@ base::Status DriveAssemblies::Register(AssemblyObject& assemblies) {
     if (!status.ok()) return status;
   }
   for (std::uint16_t instance : kInputInstances) {
-    const base::Status status = assemblies.Register(instance, AssemblyDirection::kInput, MemoryOf(instance));
+    const base::Status status = assemblies.RegisterInput(instance, MemoryOf(instance), *this);
     if (!status.ok()) return status;
   }
   // The input-only heartbeat: an O->T point without data. An explicit Set of its 0 bytes is accepted and
   // does nothing (OnExplicitWrite).
-  RefreshInputs();
+  for (std::uint16_t instance : kInputInstances) RefreshInput(instance, MemoryOf(instance));
   return assemblies.Register(kInputOnlyHeartbeat, AssemblyDirection::kOutput, std::span<std::uint8_t>(), this);
 }
 
@@ -135,11 +135,10 @@ ServiceStatus DriveAssemblies::OnExplicitWrite(std::uint32_t instance, std::span
 
 void DriveAssemblies::Poll(hal::Micros now) {
   runtime_.Poll(now);
-  RefreshInputs();
 }
 
-void DriveAssemblies::RefreshInputs() {
-  for (std::uint16_t instance : kInputInstances) (void)runtime_.FillInput(instance, MemoryOf(instance));
+void DriveAssemblies::RefreshInput(std::uint32_t instance, std::span<std::uint8_t> data) {
+  (void)runtime_.FillInput(instance, data);
 }
 
 std::span<std::uint8_t> DriveAssemblies::MemoryOf(std::uint32_t instance) {

@@ -21,6 +21,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       loop_(devices.clock, devices.waiter, netif_),
       proxy_(devices.drive_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{}),
       proxy_service_(proxy_),
+      drive_events_(proxy_),
       modbus_server_(proxy_, proxy_, proxy_),
       modbus_service_(modbus_server_, devices.clock, {.port = 502, .keepalive = options.keepalive}),
       parameter_writer_(proxy_),
@@ -72,19 +73,22 @@ base::Status Card::Start() {
   if (base::Status started = proxy_.Start(clock_.NowMicros()); !started.ok()) return started;
 
   failed_part_ = "event loop";
-  // The loop polls the services in this order on each pass.
-  const auto add = [this](Service& service) { return loop_.AddService(service); };
-  for (Service* service : {static_cast<Service*>(&proxy_service_), static_cast<Service*>(&modbus_service_)}) {
-    if (base::Status added = add(*service); !added.ok()) return added;
-  }
+  // The loop polls the services in this order (event_loop.h "Which services a pass polls"): the drive
+  // link on every pass (its bytes), the I/O productions at their slots only, the rest when due or
+  // after an event.
+  const auto add = [this](Service& service, PollWhen when) { return loop_.AddService(service, when); };
+  if (base::Status added = add(proxy_service_, PollWhen::kEveryPass); !added.ok()) return added;
+  if (base::Status added = add(modbus_service_, PollWhen::kDueOrEvent); !added.ok()) return added;
   for (Service* service : eip_card_.services()) {
-    if (base::Status added = add(*service); !added.ok()) return added;
+    const PollWhen when = service == eip_card_.production_service() ? PollWhen::kDueOnly : PollWhen::kDueOrEvent;
+    if (base::Status added = add(*service, when); !added.ok()) return added;
   }
   for (Service* service : {static_cast<Service*>(&parameter_writer_), static_cast<Service*>(&web_application_),
                            static_cast<Service*>(&web_service_), static_cast<Service*>(&publisher_),
                            static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_)}) {
-    if (base::Status added = add(*service); !added.ok()) return added;
+    if (base::Status added = add(*service, PollWhen::kDueOrEvent); !added.ok()) return added;
   }
+  loop_.SetEventProbe(&drive_events_);
   indicators_.RestartPowerUpTest(clock_.NowMicros());
   failed_part_ = "";
   return base::OkStatus();
@@ -108,6 +112,39 @@ std::optional<hal::ResetKind> Card::RunOnce() {
   }
   loop_.RunOnce();
   return std::nullopt;
+}
+
+Card::DriveLinkEvents::Picture Card::DriveLinkEvents::Take() const {
+  const drive_link::ProxyCounters& counters = proxy_.counters();
+  Picture now;
+  now.link = proxy_.link().state();
+  now.config_loaded = proxy_.config_loaded();
+  now.drive_status_known = proxy_.drive_status_known();
+  now.drive_command_taken = proxy_.drive_command_taken();
+  now.loss_action_active = proxy_.loss_action_active();
+  now.drive_status = proxy_.drive_status();
+  now.config_loads = counters.config_loads;
+  now.monitor_words = proxy_.MonitorWords();
+  const drive_link::DriveFeedbackWords feedback = proxy_.DriveFeedback();
+  now.feedback_fd00 = feedback.fd00;
+  now.feedback_fe02 = feedback.fe02;
+  now.feedback_known = feedback.known;
+  now.accesses_done = counters.accesses_ok;
+  for (std::uint32_t errors : counters.access_errors) now.accesses_done += errors;
+  now.writes_done = counters.command_writes + counters.command_errors + counters.owned_writes +
+                    counters.owned_errors + counters.loss_action_writes + counters.loss_action_errors;
+  return now;
+}
+
+bool Card::DriveLinkEvents::TakeEvent() {
+  const Activity activity{proxy_.link().counters().completed, proxy_.counters().accesses,
+                          proxy_.counters().pool_full, proxy_.link().state(), proxy_.loss_action_active()};
+  if (activity == activity_) return false;
+  activity_ = activity;
+  const Picture now = Take();
+  if (now == seen_) return false;
+  seen_ = now;
+  return true;
 }
 
 CardReadiness Card::Readiness() const {

@@ -95,7 +95,9 @@ class Card {
 
   // A service of the main, polled by the card's loop (before Start()). kResourceExhausted when the
   // loop is full.
-  base::Status AddService(Service& service) { return loop_.AddService(service); }
+  base::Status AddService(Service& service, PollWhen when = PollWhen::kEveryPass) {
+    return loop_.AddService(service, when);
+  }
 
   // Registers the CIP classes and assemblies, loads the web passwords and starts the drive link.
   // Fails only on a wiring mistake or a drive link that cannot start; failed_part() names the part.
@@ -138,6 +140,50 @@ class Card {
   struct LwipStart {
     explicit LwipStart(const CardDevices& devices);
   };
+  // The drive link's events for the loop: what the front ends wait for changed. The link state, the
+  // configuration load, the drive status word, the monitor words, the drive feedback, an on-demand
+  // access or a command write finished, the loss action. Not every serial transaction or exchange
+  // cycle: the cyclic reads of an idle drive return what they returned before, and polling every
+  // front end for each of them was most of the card's idle work.
+  class DriveLinkEvents final : public EventProbe {
+   public:
+    explicit DriveLinkEvents(const drive_link::RegisterProxy& proxy) : proxy_(proxy) {}
+    bool TakeEvent() override;
+
+   private:
+    struct Picture {
+      drive_link::LinkState link{};
+      bool config_loaded = false;
+      bool drive_status_known = false;
+      bool drive_command_taken = false;
+      bool loss_action_active = false;
+      std::uint16_t drive_status = 0;
+      std::uint32_t config_loads = 0;
+      drive_link::ScannerWords monitor_words{};
+      std::uint16_t feedback_fd00 = 0;
+      std::uint16_t feedback_fe02 = 0;
+      bool feedback_known = false;
+      std::uint32_t accesses_done = 0;
+      std::uint32_t writes_done = 0;
+      bool operator==(const Picture&) const = default;
+    };
+    // What moves whenever the picture may have changed: a transaction finished, the link state, an
+    // access accepted (a local refusal finishes without the link), the loss action. Compared first,
+    // so that a pass without drive-link activity costs a few loads.
+    struct Activity {
+      std::uint32_t completed = 0;
+      std::uint32_t accesses = 0;
+      std::uint32_t pool_full = 0;
+      drive_link::LinkState link{};
+      bool loss_action_active = false;
+      bool operator==(const Activity&) const = default;
+    };
+    Picture Take() const;
+
+    const drive_link::RegisterProxy& proxy_;
+    Activity activity_;
+    Picture seen_;
+  };
   class ResetLatch final : public hal::ResetControl {
    public:
     void RequestReset(hal::ResetKind kind) override { kind_ = kind; }
@@ -158,6 +204,7 @@ class Card {
   ResetLatch reset_;
   drive_link::RegisterProxy proxy_;
   PolledService<drive_link::RegisterProxy> proxy_service_;
+  DriveLinkEvents drive_events_;
   modbus::Server modbus_server_;
   ModbusTcpService modbus_service_;
   ParameterWriter parameter_writer_;

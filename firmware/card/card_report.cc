@@ -282,6 +282,8 @@ void ReportLoopStats(const EventLoop& loop, ReportSink& out) {
   out.Value({"loop.frames_in"}, stats.frames_in);
   out.Value({"loop.bounded_passes"}, stats.bounded_passes);
   out.Value({"loop.link_changes"}, stats.link_changes);
+  out.Value({"loop.polls"}, stats.polls);
+  out.Value({"loop.event_passes"}, stats.event_passes);
 }
 
 void ReportNetifStats(const CardNetif& netif, ReportSink& out) {

@@ -65,17 +65,18 @@ void AppendStats(const CardReport& report, std::string& out) {
 
 void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
                           const SetPlugged& set_plugged, hal::ResetControl& reset,
-                          sim::SimulatedInverter& inverter) {
+                          sim::SimulatedInverter* inverter) {
   // "link L down" -> words. More than kMaxCommandWords words is no command of ours: the count says so.
   std::string_view words[hal::host::kMaxCommandWords];
   const std::size_t count = hal::host::SplitCommand(command, words);
   const std::string_view verb = count > 0 ? words[0] : std::string_view();
-  if (count <= hal::host::kMaxCommandWords && sim::HandleSimCommand(std::span(words, count), reply, inverter)) {
+  if (inverter != nullptr && count <= hal::host::kMaxCommandWords &&
+      sim::HandleSimCommand(std::span(words, count), reply, *inverter)) {
     return;
   }
   if (verb == "help" && count == 1) {
     reply += kHelp;
-    reply += sim::kSimControlHelp;
+    if (inverter != nullptr) reply += sim::kSimControlHelp;
   } else if (verb == "stats" && count == 1) {
     AppendStats(report, reply);
   } else if (verb == "config" && count == 1 && report.card != nullptr) {
@@ -94,7 +95,7 @@ void HandleControlCommand(std::string_view command, std::string& reply, const Ca
   } else if (verb == "power-cycle" && count == 1) {
     // The card and the drive lose power together: the inverter's image is stored before the card
     // restarts (re-exec), and the new process starts the inverter from it.
-    inverter.PowerCycle();
+    if (inverter != nullptr) inverter->PowerCycle();
     reset.RequestReset(hal::ResetKind::kRestart);
   } else if (verb == "link" && count == 3) {
     hal::PortId port{};

@@ -41,8 +41,10 @@ void AppendStats(const CardReport& report, std::string& out);
 // Runs one control command and appends its answer (data lines, then "ok" or "error <reason>").
 // The inverter's commands (get, set, terminal, trip, inject, status) go to HandleSimCommand;
 // power-cycle power-cycles the inverter, stores its image and requests a restart of the card.
+// `inverter` is null when the inverter is another process (--drive): its commands are then unknown
+// here, and power-cycle restarts the card alone.
 void HandleControlCommand(std::string_view command, std::string& reply, const CardReport& report,
                           const SetPlugged& set_plugged, hal::ResetControl& reset,
-                          sim::SimulatedInverter& inverter);
+                          sim::SimulatedInverter* inverter);
 
 }  // namespace host

@@ -1,5 +1,11 @@
 #include "host_card.h"
 
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
+
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -89,6 +95,21 @@ bool OpenNetworkPort(const HostOptions& options, const hal::MacAddress& mac, con
   return true;
 }
 
+// A connected stream socket to the inverter's serial line at `path`; -1 when nothing listens there.
+int ConnectUnixStream(const std::string& path) {
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  if (path.size() >= sizeof(address.sun_path)) return -1;
+  std::memcpy(address.sun_path, path.data(), path.size());
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return -1;
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
 }  // namespace
 
 CardExit RunHostCard(const HostOptions& options, std::string& error) {
@@ -100,35 +121,47 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   if (!store.ok()) return CardExit::kFailed;
   const hal::MacAddress mac = firmware::LoadOrCreateMac(*store.value(), random);
 
-  // The serial line to the inverter: a socket pair, the card's UART on one end and the simulated
-  // inverter on the other (docs/simulator.md "In ipe002z-host").
-  auto line = hal::host::SocketSerialPort::CreatePair();
-  if (!line.ok()) {
-    error = "cannot create the serial line to the simulated inverter";
-    return CardExit::kFailed;
-  }
-  std::unique_ptr<hal::host::SocketSerialPort> inverter_serial = std::move(line.value().inverter);
+  // The serial line to the inverter: with --drive, a connection to an inverter in another process;
+  // otherwise a socket pair, the card's UART on one end and the simulated inverter on the other
+  // (docs/simulator.md "In ipe002z-host").
+  std::unique_ptr<hal::host::SocketSerialPort> inverter_serial;
   // The card's end of the line, for the drive link. Registered with the waiter so reply bytes wake
   // the loop; whoever holds this end must read them, or poll() would report them forever.
-  std::unique_ptr<hal::host::SocketSerialPort> card_serial = std::move(line.value().card);
+  std::unique_ptr<hal::host::SocketSerialPort> card_serial;
+  std::unique_ptr<sim::SimulatedInverter> inverter;
+  if (!options.drive_socket.empty()) {
+    const int fd = ConnectUnixStream(options.drive_socket);
+    if (fd < 0) {
+      error = "cannot connect to the inverter at unix:" + options.drive_socket;
+      return CardExit::kFailed;
+    }
+    card_serial = std::make_unique<hal::host::SocketSerialPort>(fd);
+  } else {
+    auto line = hal::host::SocketSerialPort::CreatePair();
+    if (!line.ok()) {
+      error = "cannot create the serial line to the simulated inverter";
+      return CardExit::kFailed;
+    }
+    inverter_serial = std::move(line.value().inverter);
+    card_serial = std::move(line.value().card);
 
-  sim::SimInverterConfig inverter_config;
-  inverter_config.model = options.model;
-  inverter_config.directory = options.state_dir + "/inverter";
-  inverter_config.presets = options.params;
-  inverter_config.server = sim::ServerConfigFromOptions(options);
-  inverter_config.program = "ipe002z-host";
-  std::unique_ptr<sim::SimulatedInverter> inverter =
-      sim::SimulatedInverter::Create(inverter_config, *inverter_serial, clock, stderr, error);
-  if (!inverter) return CardExit::kFailed;
-  // --ip: the address plan keyed into the inverter before power-up, at every start.
-  if (options.ip_given &&
-      !sim::KeyManualAddress(*inverter, {options.ip, options.netmask, options.gateway}, error)) {
-    return CardExit::kFailed;
+    sim::SimInverterConfig inverter_config;
+    inverter_config.model = options.model;
+    inverter_config.directory = options.state_dir + "/inverter";
+    inverter_config.presets = options.params;
+    inverter_config.server = sim::ServerConfigFromOptions(options);
+    inverter_config.program = "ipe002z-host";
+    inverter = sim::SimulatedInverter::Create(inverter_config, *inverter_serial, clock, stderr, error);
+    if (!inverter) return CardExit::kFailed;
+    // --ip: the address plan keyed into the inverter before power-up, at every start.
+    if (options.ip_given &&
+        !sim::KeyManualAddress(*inverter, {options.ip, options.netmask, options.gateway}, error)) {
+      return CardExit::kFailed;
+    }
+    waiter.Register(*inverter_serial);         // request bytes wake the inverter
+    waiter.Register(inverter->poll_source());  // its reply and receive timers
   }
-  waiter.Register(*inverter_serial);         // request bytes wake the inverter
-  waiter.Register(inverter->poll_source());  // its reply and receive timers
-  waiter.Register(*card_serial);             // reply bytes wake the card
+  waiter.Register(*card_serial);  // reply bytes wake the card
 
   NetworkPort network;
   if (!OpenNetworkPort(options, mac, clock, network, error)) return CardExit::kFailed;
@@ -162,8 +195,11 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
                             .fatal = console,
                             .watchdog = nullptr},
       firmware::CardOptions{.keepalive = options.tcp_keepalive});
-  InverterStoreCheck store_check(*inverter);
-  card->AddService(store_check).IgnoreError();  // stores the inverter's EEPROM image when due
+  std::optional<InverterStoreCheck> store_check;
+  if (inverter) {
+    store_check.emplace(*inverter);
+    card->AddService(*store_check, firmware::PollWhen::kDueOnly).IgnoreError();  // stores the inverter's EEPROM image when due
+  }
   if (base::Status started = card->Start(); !started.ok()) {
     error = std::string(card->failed_part()) + ": " + base::StatusName(started);
     return CardExit::kFailed;
@@ -180,7 +216,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   if (!options.sim_control_path.empty()) {
     control = std::make_unique<hal::host::ControlServer>(
         options.sim_control_path, [&](std::string_view command, std::string& reply) {
-          HandleControlCommand(command, reply, report, network.set_plugged, card->reset_control(), *inverter);
+          HandleControlCommand(command, reply, report, network.set_plugged, card->reset_control(), inverter.get());
         });
     if (!control->Start(error)) return CardExit::kFailed;
     waiter.Register(*control);
@@ -213,7 +249,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
       ready_printed = true;
     }
   }
-  inverter->SaveIfChanged();  // at exit and before a restart: the drive keeps what it was told
+  if (inverter) inverter->SaveIfChanged();  // at exit and before a restart: the drive keeps what it was told
   if (reset.has_value()) {
     // Let the control socket deliver its answer before the process image is replaced.
     waiter.WaitUntil(clock.NowMicros());

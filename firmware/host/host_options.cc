@@ -79,6 +79,9 @@ const char* HostUsage() {
           "  --state-dir DIR                    persistent state (default: a fresh temporary dir)\n"
           "  --pcap FILE                        capture every frame in and out\n"
           "  --sim-control PATH                 UNIX control socket (line protocol; 'help' lists it)\n"
+          "  --drive unix:PATH                  the inverter is another process listening there\n"
+          "                                     (ipe002z-inverter --serial unix:PATH); default: the\n"
+          "                                     simulated inverter in this process (the flags below)\n"
           "  --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT\n"
           "                                     TCP keepalive of the card's connections (for tests): first\n"
           "                                     probe after IDLE_MS idle, then every INTERVAL_MS, dropped\n"
@@ -122,6 +125,9 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
       options.pcap_path = value;
     } else if (flag == "--sim-control") {
       options.sim_control_path = value;
+    } else if (flag == "--drive") {
+      ok = value.rfind("unix:", 0) == 0 && value.size() > 5;
+      options.drive_socket = ok ? value.substr(5) : std::string();
     } else if (const sim::FlagOutcome taken = sim::TakeInverterFlag(flag, value, options);
                taken != sim::FlagOutcome::kNotOurs) {
       ok = taken == sim::FlagOutcome::kTaken;

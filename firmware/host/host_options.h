@@ -26,6 +26,10 @@ struct HostOptions : sim::InverterOptions {
   std::string state_dir;                    // empty: a fresh temporary directory
   std::string pcap_path;
   std::string sim_control_path;
+  // --drive unix:PATH: the drive link talks to an inverter listening there (ipe002z-inverter --serial
+  // unix:PATH) instead of the simulator in this process; empty: the in-process simulator. Lets a
+  // profiler count the card's own work without the simulator's (tools/bench/instructions).
+  std::string drive_socket;
   // --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT: keepalive timing of the card's TCP connections (tests
   // shorten it to see a vanished peer dropped); default lwipopts.h's 60 s, 10 s, 6.
   firmware::TcpKeepalive tcp_keepalive;

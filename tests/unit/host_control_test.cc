@@ -30,7 +30,7 @@ class HostControl : public SimInverterFixture {
 
   std::string Run(std::string_view command) {
     std::string reply;
-    HandleControlCommand(command, reply, report_, set_plugged_, reset_, *inverter_);
+    HandleControlCommand(command, reply, report_, set_plugged_, reset_, inverter_.get());
     return reply;
   }
 

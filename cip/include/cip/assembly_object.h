@@ -39,6 +39,14 @@ class AssemblyWriteHandler {
   virtual ServiceStatus OnExplicitWrite(std::uint32_t instance, std::span<const std::uint8_t> data) = 0;
 };
 
+class AssemblyInputSource {
+ public:
+  virtual ~AssemblyInputSource() = default;
+  // Brings input assembly `instance`'s memory up to date just before an explicit read of its data:
+  // the registrant fills it when it is read (and when it produces), not on every pass of the loop.
+  virtual void RefreshInput(std::uint32_t instance, std::span<std::uint8_t> data) = 0;
+};
+
 class AssemblyObject final : public AttributeHandler {
  public:
   AssemblyObject();
@@ -48,6 +56,8 @@ class AssemblyObject final : public AttributeHandler {
   // kMaxAssemblies reached.
   base::Status Register(std::uint32_t instance, AssemblyDirection direction, std::span<std::uint8_t> data,
                         AssemblyWriteHandler* handler = nullptr);
+  // An input assembly whose memory `source` refreshes before each explicit read.
+  base::Status RegisterInput(std::uint32_t instance, std::span<std::uint8_t> data, AssemblyInputSource& source);
   // The registered memory, empty when there is no such instance.
   std::span<std::uint8_t> Data(std::uint32_t instance) const;
 
@@ -64,6 +74,7 @@ class AssemblyObject final : public AttributeHandler {
     AssemblyDirection direction = AssemblyDirection::kInput;
     std::span<std::uint8_t> data;
     AssemblyWriteHandler* handler = nullptr;
+    AssemblyInputSource* source = nullptr;
   };
   const Entry* Find(std::uint32_t instance) const;
 

@@ -117,6 +117,7 @@ class ConnectionManager final : public AttributeHandler,
   bool OwnedByAnotherOriginator(std::uint32_t originator_address) const override;
   // The open connections (at most out.size() of them, in table order); returns how many were written.
   std::size_t ListConnections(std::span<ConnectionInfo> out) const override;
+  bool AnyOpen() const override { return ActiveConnections() > 0; }
   const ConnectionCounters& counters() const { return counters_; }
   std::uint32_t missed_productions() const { return missed_productions_; }
   std::uint32_t dropped_datagrams() const { return dropped_datagrams_; }

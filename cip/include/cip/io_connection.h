@@ -18,6 +18,7 @@
 //     T->O: the data (modeless)
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -141,6 +142,12 @@ class ConnectionTable {
   virtual ~ConnectionTable() = default;
   // The open connections (at most out.size() of them, in table order); returns how many were written.
   virtual std::size_t ListConnections(std::span<ConnectionInfo> out) const = 0;
+  // Whether any connection is open (the NS LED asks after every event of the loop: a table answers
+  // without copying a ConnectionInfo).
+  virtual bool AnyOpen() const {
+    std::array<ConnectionInfo, 1> one{};
+    return ListConnections(one) > 0;
+  }
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   virtual bool IsOwned(std::uint32_t consumed_point) const = 0;
   // Whether an exclusive-owner connection opened from another IP address than `originator_address` is

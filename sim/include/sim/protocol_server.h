@@ -89,9 +89,11 @@ class InverterProtocolServer : private drive_link::wire::FrameSink {
   InverterProtocolServer(InverterModel& model, hal::SerialPort& line, const hal::Clock& clock,
                          ServerConfig config = {});
 
-  // Moves the model's time to `now`, reads the line, handles complete frames, fires the receive timer and
-  // writes the replies that are due.
+  // Reads the line, handles complete frames, fires the receive timer and writes the replies that are
+  // due. The model's time moves to `now` at each request and at most once per kModelTick otherwise (the
+  // first poll sets its time base): work per request or per tick, not per call.
   void Poll(hal::Micros now);
+  static constexpr hal::Micros kModelTick = 10 * hal::kMicrosPerMilli;
   // Earliest of: the next reply's release, the receive timer, a retry of a partial write; `now` of the
   // last Poll when the line had more bytes than one Poll reads. hal::kNever when idle.
   hal::Micros NextDeadline() const;
@@ -151,6 +153,7 @@ class InverterProtocolServer : private drive_link::wire::FrameSink {
   std::deque<PendingReply> pending_;
   std::vector<ActiveFault> faults_;
   ServerCounters counters_;
+  hal::Micros next_model_tick_ = 0;
 };
 
 // Lets the host's PollWaiter sleep until the server's next deadline and run Poll after every wait. The

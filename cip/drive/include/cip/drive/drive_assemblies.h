@@ -51,7 +51,7 @@ class ConnectionManagerOwnership final : public OwnershipQuery {
 // Input + output bytes of the 12 data assemblies (4 + 4 + 16 + 8 + 12 + 18 each way).
 inline constexpr std::size_t kAssemblyMemorySize = 2 * (4 + 4 + 16 + 8 + 12 + 18);
 
-class DriveAssemblies final : public IoApplication, public AssemblyWriteHandler {
+class DriveAssemblies final : public IoApplication, public AssemblyWriteHandler, public AssemblyInputSource {
  public:
   explicit DriveAssemblies(DriveProfileRuntime& runtime);
   DriveAssemblies(const DriveAssemblies&) = delete;
@@ -73,8 +73,11 @@ class DriveAssemblies final : public IoApplication, public AssemblyWriteHandler 
   // says no (an exclusive owner holds it), else applied as a packet in run mode.
   ServiceStatus OnExplicitWrite(std::uint32_t instance, std::span<const std::uint8_t> data) override;
 
-  // The firmware's Service: drives the runtime (parameter accesses, supervisor, feedback hold) and
-  // refreshes the input instances' memory.
+  // AssemblyInputSource: an explicit read of an input instance sees the drive as it is now.
+  void RefreshInput(std::uint32_t instance, std::span<std::uint8_t> data) override;
+
+  // The firmware's Service: drives the runtime (parameter accesses, supervisor, feedback hold). The
+  // input instances' memory is filled when read or produced, not here (a pass is not a change).
   void Poll(hal::Micros now);
   hal::Micros NextDeadline() const { return runtime_.NextDeadline(); }
   // Forwarded to DriveProfileRuntime::OnConnectionsChanged (call from ConnectionEvents).
@@ -85,7 +88,6 @@ class DriveAssemblies final : public IoApplication, public AssemblyWriteHandler 
 
  private:
   std::span<std::uint8_t> MemoryOf(std::uint32_t instance);
-  void RefreshInputs();
 
   DriveProfileRuntime& runtime_;
   std::array<std::uint8_t, kAssemblyMemorySize> memory_{};
