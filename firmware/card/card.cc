@@ -16,9 +16,9 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       port_(devices.port),
       store_(devices.store),
       watchdog_(devices.watchdog),
-      // The EDS the card serves (File object 0x37 instance 0xC8, GET /eds): the EDS generator's file
-      // replaces the placeholder here, and only here.
-      eds_(PlaceholderEds()),
+      // The EDS the card serves (File object 0x37 instance 0xC8, GET /api/eds): the EDS generator's
+      // file replaces the placeholder here, and only here (a host test may pass its own in options).
+      eds_(options.eds != nullptr ? *options.eds : PlaceholderEds()),
       lwip_(devices),
       netif_(devices.port),
       addressing_(netif_, devices.clock, devices.random),

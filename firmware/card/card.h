@@ -77,6 +77,8 @@ struct CardDevices {
 
 struct CardOptions {
   TcpKeepalive keepalive;  // of every TCP connection the card accepts
+  // Another EDS than the card's own (card.cc), outliving the card: the host's --eds, for tests.
+  const cip::ServedFile* eds = nullptr;
 };
 
 // Where the card is on its way up (the "ready" line is printed once this says so).

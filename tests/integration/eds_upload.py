@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """The card's EDS from the card itself (docs/file-object.md), over TAP against the host card (c500 = 1).
-Run by tools/netns with --pcap (CARD_IP, HOST_IP, CARD_PCAP).
+Run by tools/netns with --pcap (CARD_IP, HOST_IP, CARD_PCAP); EDS_FILE names the file the card was told to
+serve (--eds): every download must equal it byte for byte (without EDS_FILE: the HTTP body is the reference).
 
 1. HTTP: GET /api/eds without a session is 401; after login it is 200 with application/octet-stream, an
-   attachment file name and Content-Length equal to the body's size.
+   attachment file name and Content-Length equal to the body's size; curl downloads the same bytes.
 2. CIP, File object 0x37 instance 0xC8: attribute 6 (size) and 7 (checksum) agree with the HTTP body,
    attribute 4 names the same file; the whole file uploaded with Initiate_Upload at transfer size 7
    (numbers wrapping past 255 for a file over 1792 bytes), packet types first / middle / last, the
@@ -79,6 +80,9 @@ def http_get_eds():
         fail(f"Content-Disposition: {response.getheader('Content-Disposition')!r}")
     if not body:
         fail("the EDS is empty")
+    with_curl = subprocess.run(["curl", "-s", "--max-time", "20", "-b", f"ipe_session={cookie.group(1)}",
+                                f"http://{CARD_IP}/api/eds"], capture_output=True, timeout=30).stdout
+    same("curl's download against http.client's", with_curl, body)
     print(f"ok: GET /api/eds: 401 without a session, then 200, {len(body)} bytes as {name.group(1)}")
     return body, name.group(1)
 
@@ -166,6 +170,10 @@ def capture_clean():
 
 def main():
     eds, http_name = http_get_eds()
+    if os.environ.get("EDS_FILE"):
+        with open(os.environ["EDS_FILE"], "rb") as served:
+            same("GET /api/eds against the file served", eds, served.read())
+        same("file name", http_name, os.path.basename(os.environ["EDS_FILE"]))
     with Client(CARD_IP) as client:
         same("RegisterSession", client.register_session().status, 0)
         name = upload(client, eds)
