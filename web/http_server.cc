@@ -210,7 +210,7 @@ void HttpServer::LoadStreamChunk(HttpClientId id, std::size_t room, hal::Micros 
   if (client.must_close || !client.head_left.empty() || !client.body_left.empty() || !StreamLeft(client)) return;
   if (!TakeResponse(client)) return;
   std::array<std::uint8_t, kHttpResponseBufferBytes>& buffer = responses_[client.response];
-  const std::size_t want = std::min({room, buffer.size(), std::size_t{client.stream->Size() - client.stream_offset}});
+  const std::size_t want = std::min({room, buffer.size(), static_cast<std::size_t>(client.stream->Size() - client.stream_offset)});
   const std::size_t read = client.stream->ReadAt(client.stream_offset, std::span(buffer).first(want));
   if (read == 0) {
     // The source ended before its Content-Length: closing is the only honest end of this answer.
