@@ -1,8 +1,9 @@
 // The card's whole EtherNet/IP side, assembled (docs/ethernetip.md "In the firmware"): the CIP objects
 // on the card's providers, the Connection Manager with the drive profile's assemblies, the drive
-// objects 0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the encapsulation server on TCP/UDP
-// 44818 and class 1 I/O on UDP 2222. Device-path code: the host and a board build it the same way, from
-// the HAL devices, the netif, the register proxy and the parameter writer they already have.
+// objects 0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the File object 0x37 with the EDS,
+// the encapsulation server on TCP/UDP 44818 and class 1 I/O on UDP 2222. Device-path code: the host and
+// a board build it the same way, from the HAL devices, the netif, the register proxy and the parameter
+// writer they already have.
 //
 // The composition root then:
 //   - gives front_ends() to the CardStatusPublisher (each configuration load: c500 opens or closes the
@@ -26,6 +27,7 @@
 #include "cip/drive/drive_profile_runtime.h"
 #include "cip/drive/motor_data_object.h"
 #include "cip/drive/parameter_object.h"
+#include "cip/file_object.h"
 #include "cip_connection_supervisor.h"
 #include "cip_providers.h"
 #include "configurable_service.h"
@@ -59,6 +61,7 @@ struct EtherNetIpCardDevices {
 struct EtherNetIpCardOptions {
   TcpKeepalive keepalive;
   cip::ConnectionManagerOptions connections;
+  cip::ServedFile eds;  // the File object's instance 0xC8 (no content: no instance)
 };
 
 class EtherNetIpCard final : private DriveControlListener {
@@ -133,6 +136,7 @@ class EtherNetIpCard final : private DriveControlListener {
   cip::drive::MotorDataObject motor_data_;
   cip::drive::ParameterObject parameters_64_;
   cip::drive::ParameterObject parameters_65_;
+  cip::FileObject file_;
   DriveProfileConfig drive_profile_config_;
   EipService eip_;
   IoService io_;

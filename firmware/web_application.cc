@@ -221,8 +221,8 @@ HandlerResult WebApplication::HandleApi(const Call& call, std::string_view route
   if (route == "login") return post ? Login(call) : MethodNotAllowed(response, "POST");
 
   // Which calls take GET (and HEAD) and which POST (a change, with the CSRF token).
-  static constexpr std::array<std::string_view, 6> kReads = {"monitor", "registers", "network",
-                                                             "modbus-scanner", "eip-scanner", "statistics"};
+  static constexpr std::array<std::string_view, 7> kReads = {"monitor",     "registers",  "network", "modbus-scanner",
+                                                             "eip-scanner", "statistics", "eds"};
   static constexpr std::array<std::string_view, 5> kChanges = {"logout", "elevate", "passwords", "network/reset",
                                                                "registers"};
   const bool readable = std::find(kReads.begin(), kReads.end(), route) != kReads.end();
@@ -255,6 +255,7 @@ HandlerResult WebApplication::HandleApi(const Call& call, std::string_view route
   if (route == "passwords") return ChangePassword(call);
   if (route == "registers") return post ? WriteRegister(call) : ReadRegisters(call);
   if (route == "network/reset") return CommunicationReset(call);
+  if (route == "eds") return Eds(call);
   if (route == "monitor") Monitor(call);
   if (route == "network") Network(call);
   if (route == "modbus-scanner") ModbusScanner(call);
@@ -262,6 +263,28 @@ HandlerResult WebApplication::HandleApi(const Call& call, std::string_view route
   if (route == "statistics") {
     Json(response, HttpStatus::kOk, [&](web::JsonWriter& json) { devices_.status.WriteStatistics(json); });
   }
+  return HandlerResult::kDone;
+}
+
+HandlerResult WebApplication::Eds(const Call& call) {
+  const cip::ServedFile& eds = devices_.eds;
+  if (eds.content == nullptr) return Error(call.response, HttpStatus::kNotFound, "no EDS");
+  // attachment; filename="<name>": characters that would end or break the quoted string become '_'.
+  constexpr std::string_view kHead = "attachment; filename=\"";
+  std::array<char, kHead.size() + 256 + 1> disposition{};
+  std::size_t n = kHead.copy(disposition.data(), kHead.size());
+  for (char c : eds.name.substr(0, 255)) {
+    const bool plain = c >= 0x20 && c < 0x7F && c != '"' && c != '\\';
+    disposition[n++] = plain ? c : '_';
+  }
+  disposition[n++] = '"';
+  web::HttpResponseWriter& response = call.response;
+  response.Start(HttpStatus::kOk);
+  SecurityHeaders(response);
+  response.Header("Content-Type", "application/octet-stream");
+  response.Header("Content-Disposition", std::string_view(disposition.data(), n));
+  response.Header("Cache-Control", "no-store");
+  response.StreamedBody(eds_body_);
   return HandlerResult::kDone;
 }
 

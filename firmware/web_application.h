@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "cip/file_object.h"
 #include "drive_link/card_config.h"
 #include "drive_link/register_access.h"
 #include "event_loop.h"
@@ -39,12 +40,13 @@ struct WebApplicationDevices {
   const drive_link::ScannerImage& scanner;
   const drive_link::LossSupervision& loss;
   const WebCardStatus& status;
+  cip::ServedFile eds = {};  // GET /api/eds (docs/file-object.md); no content: 404
 };
 
 class WebApplication final : public web::HttpHandler, public Service {
  public:
   explicit WebApplication(const WebApplicationDevices& devices)
-      : devices_(devices), monitor_(devices.registers), jobs_(devices.registers) {}
+      : devices_(devices), monitor_(devices.registers), jobs_(devices.registers), eds_body_(devices.eds.content) {}
   WebApplication(const WebApplication&) = delete;
   WebApplication& operator=(const WebApplication&) = delete;
 
@@ -78,10 +80,25 @@ class WebApplication final : public web::HttpHandler, public Service {
   void Network(const Call& call);
   void ModbusScanner(const Call& call);
   void EipScanner(const Call& call);
+  web::HandlerResult Eds(const Call& call);
+
+  // The EDS as the web server streams it.
+  class FileBody final : public web::HttpBodySource {
+   public:
+    explicit FileBody(const cip::FileContent* content) : content_(content) {}
+    std::uint32_t Size() const override { return content_->Size(); }
+    std::size_t ReadAt(std::uint32_t offset, std::span<std::uint8_t> out) const override {
+      return content_->ReadAt(offset, out);
+    }
+
+   private:
+    const cip::FileContent* content_;
+  };
 
   const WebApplicationDevices devices_;
   WebDriveMonitor monitor_;
   WebRegisterJobs jobs_;
+  FileBody eds_body_;
 };
 
 }  // namespace firmware

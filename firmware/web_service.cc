@@ -138,6 +138,8 @@ err_t WebService::Flush(Client& client) {
       tcp_recved(client.pcb, chunk);
       released -= chunk;
     }
+    // A streamed body's next chunk, no larger than TCP takes now: copied at once, the buffer is free again.
+    server_.LoadStreamChunk(client.id, tcp_sndbuf(client.pcb), now);
     const std::span<const std::uint8_t> output = server_.PendingOutput(client.id);
     if (output.empty()) break;
     const std::size_t count = std::min<std::size_t>(output.size(), tcp_sndbuf(client.pcb));

@@ -77,6 +77,7 @@ void HttpResponseWriter::Start(HttpStatus status) {
   body_length_ = 0;
   body_started_ = false;
   external_ = {};
+  streamed_ = nullptr;
   overflow_ = false;
   Append("HTTP/1.1 ");
   AppendNumber(static_cast<std::uint32_t>(status));
@@ -133,7 +134,8 @@ void HttpResponseWriter::Finish(bool head, bool keep_alive) {
   };
   if (!HasNoBody(status_)) {
     add("Content-Length: ");
-    const std::size_t length = external_.empty() ? body_length_ : external_.size();
+    const std::size_t length =
+        streamed_ != nullptr ? streamed_->Size() : (external_.empty() ? body_length_ : external_.size());
     tail_length += FormatDecimal(static_cast<std::uint32_t>(length), tail.data() + tail_length);
     add("\r\n");
   }
@@ -145,6 +147,7 @@ void HttpResponseWriter::Finish(bool head, bool keep_alive) {
     if (head || HasNoBody(status_)) {
       used_ = header_end_ + tail_length;
       external_ = {};
+      streamed_ = nullptr;
     }
     return;
   }

@@ -1,6 +1,7 @@
 #include "web/http_server.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <string_view>
 
@@ -36,6 +37,8 @@ base::Result<HttpClientId> HttpServer::Open(hal::Micros now) {
     client.waiting_for_response = false;
     client.head_left = {};
     client.body_left = {};
+    client.stream = nullptr;
+    client.stream_offset = 0;
     client.request_bytes = 0;
     client.request_active = false;
     client.close_after_output = false;
@@ -71,6 +74,7 @@ void HttpServer::Close(HttpClientId id) {
   client.request_active = false;
   client.head_left = {};
   client.body_left = {};
+  client.stream = nullptr;
   client.waiting_for_response = false;
   GiveBackResponse(client);
 }
@@ -200,6 +204,26 @@ void HttpServer::ConsumeOutput(HttpClientId id, std::size_t count, hal::Micros n
   Serve(client, id, now);
 }
 
+void HttpServer::LoadStreamChunk(HttpClientId id, std::size_t room, hal::Micros now) {
+  if (!IsOpen(id) || room == 0) return;
+  Client& client = clients_[id];
+  if (client.must_close || !client.head_left.empty() || !client.body_left.empty() || !StreamLeft(client)) return;
+  if (!TakeResponse(client)) return;
+  std::array<std::uint8_t, kHttpResponseBufferBytes>& buffer = responses_[client.response];
+  const std::size_t want = std::min({room, buffer.size(), static_cast<std::size_t>(client.stream->Size() - client.stream_offset)});
+  const std::size_t read = client.stream->ReadAt(client.stream_offset, std::span(buffer).first(want));
+  if (read == 0) {
+    // The source ended before its Content-Length: closing is the only honest end of this answer.
+    GiveBackResponse(client);
+    client.stream = nullptr;
+    client.must_close = true;
+    return;
+  }
+  client.stream_offset += static_cast<std::uint32_t>(std::min(read, want));
+  client.head_left = std::span<const std::uint8_t>(buffer).first(std::min(read, want));
+  client.answer_written = now;
+}
+
 std::size_t HttpServer::TakeReleasedInput(HttpClientId id, std::size_t window) {
   if (!IsOpen(id)) return 0;
   Client& client = clients_[id];
@@ -244,6 +268,8 @@ void HttpServer::RunHandler(Client& client, HttpClientId id, hal::Micros now) {
   CountResponse(writer.status());
   client.head_left = writer.head();
   client.body_left = writer.external_body();
+  client.stream = writer.streamed_body();
+  client.stream_offset = 0;
   client.answer_written = now;
   client.close_after_output = !keep_alive || writer.overflowed();
   // The request is answered: its bytes leave the buffer (the answer no longer refers to them).
@@ -265,6 +291,7 @@ bool HttpServer::SendError(Client& client, HttpStatus status, hal::Micros now) {
   CountResponse(writer.status());
   client.head_left = writer.head();
   client.body_left = {};
+  client.stream = nullptr;
   client.answer_written = now;
   client.close_after_output = true;
   // Nothing more is parsed on this connection.

@@ -25,6 +25,7 @@
 #include "card_netif.h"
 #include "card_records.h"
 #include "card_status_publisher.h"
+#include "cip/file_object.h"
 #include "drive_link/register_proxy.h"
 #include "ethernet_ip_card.h"
 #include "event_loop.h"
@@ -76,6 +77,8 @@ struct CardDevices {
 
 struct CardOptions {
   TcpKeepalive keepalive;  // of every TCP connection the card accepts
+  // Another EDS than the card's own (card.cc), outliving the card: the host's --eds, for tests.
+  const cip::ServedFile* eds = nullptr;
 };
 
 // Where the card is on its way up (the "ready" line is printed once this says so).
@@ -134,6 +137,7 @@ class Card {
   const WebService& web_service() const { return web_service_; }
   const web::HttpServer& http_server() const { return http_server_; }
   const web::AccessControl& access() const { return access_; }
+  const cip::ServedFile& eds() const { return eds_; }
 
  private:
   // Binds lwIP's platform functions and runs lwip_init() before any member that uses lwIP is built.
@@ -197,6 +201,8 @@ class Card {
   hal::FramePort& port_;
   hal::NvStore& store_;
   hal::Watchdog* watchdog_;
+  // The EDS served by the File object 0x37 and by GET /eds (card.cc chooses it).
+  const cip::ServedFile eds_;
   LwipStart lwip_;
   CardNetif netif_;
   CardAddressing addressing_;

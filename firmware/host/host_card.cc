@@ -7,6 +7,8 @@
 #include <cstring>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -17,6 +19,7 @@
 #include "card_control.h"
 #include "card_lines.h"
 #include "card_records.h"
+#include "cip/byte_span_file.h"
 #include "control_server.h"
 #include "file_nv_store.h"
 #include "host_clock.h"
@@ -182,6 +185,23 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
   hal::host::LoggingLeds logged_leds(clock, hal::host::LoggingLeds::FileSink(stderr));
   hal::host::StderrConsole console;
 
+  // --eds: the file's bytes, read once (host code may allocate at start-up).
+  std::vector<std::uint8_t> eds_bytes;
+  std::optional<cip::ByteSpanFile> eds_content;
+  std::string eds_name;
+  std::optional<cip::ServedFile> eds;
+  if (!options.eds_path.empty()) {
+    std::ifstream in(options.eds_path, std::ios::binary);
+    if (!in) {
+      error = "--eds: cannot read " + options.eds_path;
+      return CardExit::kFailed;
+    }
+    eds_bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    eds_content.emplace(eds_bytes);
+    eds_name = options.eds_path.substr(options.eds_path.find_last_of('/') + 1);
+    eds = cip::ServedFile{&*eds_content, eds_name, 1, 0};
+  }
+
   // The card itself: the same composition a board builds (firmware/card/card.h).
   auto card = std::make_unique<firmware::Card>(
       firmware::CardDevices{.clock = clock,
@@ -194,7 +214,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
                             .diagnostics = console,
                             .fatal = console,
                             .watchdog = nullptr},
-      firmware::CardOptions{.keepalive = options.tcp_keepalive});
+      firmware::CardOptions{.keepalive = options.tcp_keepalive, .eds = eds ? &*eds : nullptr});
   std::optional<InverterStoreCheck> store_check;
   if (inverter) {
     store_check.emplace(*inverter);

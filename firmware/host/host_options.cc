@@ -87,6 +87,8 @@ const char* HostUsage() {
           "                                     probe after IDLE_MS idle, then every INTERVAL_MS, dropped\n"
           "                                     after COUNT unanswered (IDLE_MS and INTERVAL_MS 100-7200000,\n"
           "                                     COUNT 1-20; default 60000,10000,6)\n"
+          "  --eds PATH                         serve the file at PATH as the card's EDS (File object\n"
+          "                                     0x37, GET /api/eds) instead of the card's own\n"
           "simulated inverter (its EEPROM is kept in DIR/inverter/MODEL.eeprom):\n") +
       sim::kInverterOptionsUsage + "  --help                             this text\n";
   return usage.c_str();
@@ -121,6 +123,8 @@ ParseOutcome ParseHostOptions(int argc, const char* const* argv, HostOptions& op
       options.state_dir = value;
     } else if (flag == "--tcp-keepalive") {
       ok = ParseKeepalive(value, options.tcp_keepalive);
+    } else if (flag == "--eds") {
+      options.eds_path = value;
     } else if (flag == "--pcap") {
       options.pcap_path = value;
     } else if (flag == "--sim-control") {

@@ -33,6 +33,9 @@ struct HostOptions : sim::InverterOptions {
   // --tcp-keepalive IDLE_MS,INTERVAL_MS,COUNT: keepalive timing of the card's TCP connections (tests
   // shorten it to see a vanished peer dropped); default lwipopts.h's 60 s, 10 s, 6.
   firmware::TcpKeepalive tcp_keepalive;
+  // --eds PATH: the file the card serves as its EDS (File object 0x37, GET /api/eds) instead of its own
+  // (firmware/card/card.cc), read once at start; for tests of large files.
+  std::string eds_path;
 };
 
 enum class ParseOutcome { kRun, kHelp, kError };

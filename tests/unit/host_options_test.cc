@@ -110,6 +110,15 @@ TEST(HostOptions, TcpKeepalive_Parsed) {
   EXPECT_EQ(o.tcp_keepalive.count, 1u);
 }
 
+TEST(HostOptions, Eds_PathTaken) {
+  HostOptions o;
+  std::string error;
+  ASSERT_EQ(Parse({}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_EQ(o.eds_path, "");
+  ASSERT_EQ(Parse({"--eds", "/tmp/x.eds"}, o, error), ParseOutcome::kRun) << error;
+  EXPECT_EQ(o.eds_path, "/tmp/x.eds");
+}
+
 TEST(HostOptions, TapWithoutIp_TheInvertersAddressingDecides) {
   HostOptions o;
   std::string error;

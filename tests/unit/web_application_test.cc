@@ -7,7 +7,9 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "cip/byte_span_file.h"
 #include "drive_link/drive_registers.h"
 #include "drive_registers_fake.h"
 #include "web/assets.h"
@@ -75,9 +77,12 @@ class WebApplicationTest : public ::testing::Test {
       server.Poll(now);
     }
     std::string answer;
+    // As the transport takes it: a streamed body in chunks of the send buffer's room (700 bytes here).
+    server.LoadStreamChunk(*id, 700, now);
     for (auto chunk = server.PendingOutput(*id); !chunk.empty(); chunk = server.PendingOutput(*id)) {
       answer.append(chunk.begin(), chunk.end());
       server.ConsumeOutput(*id, chunk.size(), now);
+      server.LoadStreamChunk(*id, 700, now);
     }
     server.Close(*id);
     return answer;
@@ -117,7 +122,14 @@ class WebApplicationTest : public ::testing::Test {
   drive_link::test::ScriptedDriveRegisters drive;
   FakeScanner scanner;
   FakeCardStatus card;
-  WebApplication application{{access, drive, scanner, scanner, card}};
+  // The EDS: 3000 bytes, byte i = i mod 253.
+  std::vector<std::uint8_t> eds_bytes = [] {
+    std::vector<std::uint8_t> bytes(3000);
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<std::uint8_t>(i % 253);
+    return bytes;
+  }();
+  cip::ByteSpanFile eds{eds_bytes};
+  WebApplication application{{access, drive, scanner, scanner, card, {&eds, "vf-mb1 \"x\".eds", 1, 0}}};
   web::HttpServer server{application};
   hal::Micros now = 1'000'000'000;
   std::string cookie;
@@ -319,6 +331,38 @@ TEST_F(WebApplicationTest, PageIsServedCompressedWithEtag) {
   EXPECT_EQ(StatusLine(Exchange("GET /missing.js HTTP/1.1\r\nHost: card\r\n\r\n")), "HTTP/1.1 404 Not Found");
   EXPECT_EQ(StatusLine(Exchange("POST / HTTP/1.1\r\nHost: card\r\nContent-Length: 0\r\n\r\n")),
             "HTTP/1.1 405 Method Not Allowed");
+}
+
+TEST_F(WebApplicationTest, EdsIsStreamedAsAnAttachmentToASession) {
+  EXPECT_EQ(StatusLine(Get("/api/eds")), "HTTP/1.1 401 Unauthorized");
+  Login();
+  const std::string answer = Get("/api/eds");
+  EXPECT_EQ(StatusLine(answer), "HTTP/1.1 200 OK");
+  EXPECT_NE(answer.find("\r\nContent-Type: application/octet-stream\r\n"), std::string::npos);
+  // The quotes of the name would end the quoted string: they become '_'.
+  EXPECT_NE(answer.find("\r\nContent-Disposition: attachment; filename=\"vf-mb1 _x_.eds\"\r\n"), std::string::npos);
+  EXPECT_NE(answer.find("\r\nCache-Control: no-store\r\n"), std::string::npos);
+  EXPECT_NE(answer.find("\r\nContent-Length: 3000\r\n"), std::string::npos);
+  EXPECT_EQ(Body(answer), std::string(eds_bytes.begin(), eds_bytes.end()));
+  const std::string head = Exchange("HEAD /api/eds HTTP/1.1\r\nHost: card\r\nCookie: ipe_session=" + cookie + "\r\n\r\n");
+  EXPECT_NE(head.find("\r\nContent-Length: 3000\r\n"), std::string::npos);
+  EXPECT_EQ(Body(head), "");
+  const std::string post = Post("/api/eds", "{}");
+  EXPECT_EQ(StatusLine(post), "HTTP/1.1 405 Method Not Allowed");
+  EXPECT_NE(post.find("\r\nAllow: GET, HEAD\r\n"), std::string::npos);
+}
+
+TEST_F(WebApplicationTest, NoEdsIs404) {
+  WebApplication without{{access, drive, scanner, scanner, card}};
+  web::HttpServer other{without};
+  Login();
+  const auto id = other.Open(now);
+  ASSERT_TRUE(id.ok());
+  other.Receive(*id, Bytes("GET /api/eds HTTP/1.1\r\nHost: card\r\nCookie: ipe_session=" + cookie + "\r\n\r\n"), now);
+  const auto chunk = other.PendingOutput(*id);
+  const std::string answer(chunk.begin(), chunk.end());
+  EXPECT_EQ(StatusLine(answer), "HTTP/1.1 404 Not Found");
+  EXPECT_EQ(Body(answer), R"({"error":"no EDS"})");
 }
 
 }  // namespace

@@ -161,6 +161,11 @@ class ScriptedHandler final : public HttpHandler {
       response.BodyText(std::string(fill, 'f'));
       return HandlerResult::kDone;
     }
+    if (request.path == "/stream") {
+      response.Start(HttpStatus::kOk);
+      response.StreamedBody(stream);
+      return HandlerResult::kDone;
+    }
     if (request.path == "/asset") {
       response.Start(HttpStatus::kOk);
       response.ExternalBody(std::span<const std::uint8_t>(kAsset.data(), kAsset.size()));
@@ -172,7 +177,25 @@ class ScriptedHandler final : public HttpHandler {
   void OnClientClosed(HttpClientId client) override { closed_pending = client; }
   hal::Micros NextDeadline() const override { return release ? 0 : hal::kNever; }
 
+  // A body of `size` bytes, byte i = i mod 251, that ends early (returns nothing) from `ends_at` on.
+  class PatternSource final : public HttpBodySource {
+   public:
+    std::uint32_t Size() const override { return size; }
+    std::size_t ReadAt(std::uint32_t offset, std::span<std::uint8_t> out) const override {
+      std::size_t count = 0;
+      for (; count < out.size() && offset + count < std::min(size, ends_at); ++count) {
+        out[count] = static_cast<std::uint8_t>((offset + count) % 251);
+      }
+      largest_read = std::max(largest_read, out.size());
+      return count;
+    }
+    std::uint32_t size = 10000;
+    std::uint32_t ends_at = 0xFFFFFFFF;
+    mutable std::size_t largest_read = 0;
+  };
+
   static constexpr std::array<std::uint8_t, 5> kAsset = {'a', 's', 's', 'e', 't'};
+  PatternSource stream;
   int calls = 0;
   bool release = false;
   int closed_pending = -1;
@@ -446,6 +469,80 @@ TEST_F(WebHttpServerTest, APendingAnswerHoldsNoResponseBuffer) {
   handler.release = true;
   server.Poll(now + 1);
   EXPECT_EQ(Drain(later), OkHead(6) + "later0");
+}
+
+}  // namespace
+}  // namespace web
+
+namespace web {
+namespace {
+
+std::string Pattern(std::size_t size) {
+  std::string text;
+  for (std::size_t i = 0; i < size; ++i) text.push_back(static_cast<char>(i % 251));
+  return text;
+}
+
+// Takes a streamed answer as a transport with `room` bytes of send buffer per write would.
+std::string DrainStream(HttpServer& server, HttpClientId id, std::size_t room, hal::Micros now) {
+  std::string out;
+  for (;;) {
+    server.LoadStreamChunk(id, room, now);
+    const auto chunk = server.PendingOutput(id);
+    if (chunk.empty()) break;
+    const std::size_t count = std::min(chunk.size(), room);
+    out.append(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(count));
+    server.ConsumeOutput(id, count, now);
+  }
+  return out;
+}
+
+TEST_F(WebHttpServerTest, StreamedBodyArrivesWholeInChunksOfTheRoomOffered) {
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /stream HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  const std::string answer = DrainStream(server, id, 536, now);
+  EXPECT_EQ(answer, "HTTP/1.1 200 OK\r\nContent-Length: 10000\r\nConnection: keep-alive\r\n\r\n" + Pattern(10000));
+  EXPECT_EQ(handler.stream.largest_read, 536U);
+  EXPECT_EQ(server.response_pool().used, 0U);
+  // The connection serves its next request afterwards.
+  server.Receive(id, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(Drain(id), OkHead(3) + "ok0");
+}
+
+TEST_F(WebHttpServerTest, StreamedBodyLetsOtherAnswersTakeTheBufferBetweenChunks) {
+  const HttpClientId streaming = OpenClient();
+  const HttpClientId other = OpenClient();
+  server.Receive(streaming, Bytes("GET /stream HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  const auto head = server.PendingOutput(streaming);
+  server.ConsumeOutput(streaming, head.size(), now);
+  server.LoadStreamChunk(streaming, 1000, now);
+  ASSERT_EQ(server.PendingOutput(streaming).size(), 1000U);
+  // While a chunk is in the buffer, another answer waits; once the chunk is with TCP it is served.
+  server.Receive(other, Bytes("GET /ok HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_TRUE(server.PendingOutput(other).empty());
+  server.ConsumeOutput(streaming, 1000, now);
+  server.Poll(now);
+  const auto other_answer = server.PendingOutput(other);
+  ASSERT_FALSE(other_answer.empty());
+  // ... and the stream waits for the buffer in turn.
+  server.LoadStreamChunk(streaming, 1000, now);
+  EXPECT_TRUE(server.PendingOutput(streaming).empty());
+  EXPECT_EQ(Drain(other), OkHead(3) + "ok1");
+  EXPECT_EQ(DrainStream(server, streaming, 4096, now), Pattern(10000).substr(1000));
+  EXPECT_EQ(server.counters().response_waits, 2U);
+}
+
+TEST_F(WebHttpServerTest, StreamedBodyOfHeadIsNotSentAndAShortSourceCloses) {
+  const HttpClientId head = OpenClient();
+  server.Receive(head, Bytes("HEAD /stream HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(DrainStream(server, head, 4096, now), "HTTP/1.1 200 OK\r\nContent-Length: 10000\r\nConnection: keep-alive\r\n\r\n");
+  handler.stream.ends_at = 40;
+  const HttpClientId id = OpenClient();
+  server.Receive(id, Bytes("GET /stream HTTP/1.1\r\nHost: a\r\n\r\n"), now);
+  EXPECT_EQ(DrainStream(server, id, 4096, now),
+            "HTTP/1.1 200 OK\r\nContent-Length: 10000\r\nConnection: keep-alive\r\n\r\n" + Pattern(40));
+  EXPECT_TRUE(server.MustClose(id));
+  EXPECT_EQ(server.response_pool().used, 0U);
 }
 
 }  // namespace

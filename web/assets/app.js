@@ -446,7 +446,9 @@
     const menu = MENUS.find((m) => m.pages.includes(id));
     for (const m of MENUS) $('menu-' + m.id).classList.toggle('active', m === menu);
     $('side-menu').replaceChildren(el('h2', { text: menu.label }),
-      ...menu.pages.map((p) => el('a', { id: 'nav-' + p, href: '#/' + p, class: p === id ? 'active' : null, text: PAGES[p].title })));
+      ...menu.pages.map((p) => el('a', { id: 'nav-' + p, href: '#/' + p, class: p === id ? 'active' : null, text: PAGES[p].title })),
+      // The card's EDS file, for adding the card to a scanner's project (docs/file-object.md).
+      ...(menu.id === 'network' ? [el('a', { id: 'nav-eds', href: '/api/eds', download: true, text: 'Download EDS' })] : []));
     stopPage();
     const page = $('page');
     page.replaceChildren(el('h1', { text: PAGES[id].title }));

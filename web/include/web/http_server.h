@@ -12,6 +12,9 @@
 //   no buffer). A request whose answer finds no buffer free waits (Poll tries again). An answer still in
 //   its buffer kRequestTimeout after it was written closes its connection, so a client that does not
 //   read cannot keep the others waiting.
+// - A streamed body (HttpResponseWriter::StreamedBody) is read chunk by chunk into a response buffer when
+//   the transport has room for it (LoadStreamChunk): the buffer is held only while a chunk is handed to
+//   TCP, so other answers take it between chunks, and the file is never in RAM as a whole.
 // - Keep-alive: after an answer the next request on the connection is served. A malformed request gets
 //   its 4xx and the connection closes after it (its framing can no longer be trusted).
 // - Slots: when a connection arrives and every slot is taken, the transport may close the connection that
@@ -110,6 +113,11 @@ class HttpServer {
   // The next bytes to send, and the transport's report that `count` of them went to TCP (which may let
   // the next pipelined request be served).
   std::span<const std::uint8_t> PendingOutput(HttpClientId client) const;
+  // When the answer's streamed body is next and nothing else is pending: reads its next chunk, at most
+  // `room` bytes (the transport's free send buffer), into a response buffer, where PendingOutput() shows
+  // it. Without a free response buffer it waits (the transport calls again). A source that comes up short
+  // of its size closes the connection.
+  void LoadStreamChunk(HttpClientId client, std::size_t room, hal::Micros now);
   void ConsumeOutput(HttpClientId client, std::size_t count, hal::Micros now);
   // PendingOutput() is an external body (valid for the program's life: the transport may reference it
   // instead of copying), not the response buffer, which the next answer reuses.
@@ -147,6 +155,8 @@ class HttpServer {
     hal::Micros answer_written = 0;      // when the answer in the response buffer was written
     std::span<const std::uint8_t> head_left;  // in the response buffer
     std::span<const std::uint8_t> body_left;
+    const HttpBodySource* stream = nullptr;  // the answer's streamed body
+    std::uint32_t stream_offset = 0;          // its next byte to read
     HttpRequest request;
     std::size_t request_bytes = 0;  // the active request's length in `input`
     bool request_active = false;    // parsed, the handler has not finished it
@@ -165,7 +175,12 @@ class HttpServer {
   std::size_t responses_in_use() const;
   bool AnyWaitingWithResponseFree() const;
   void CountResponse(HttpStatus status);
-  bool OutputPending(const Client& client) const { return !client.head_left.empty() || !client.body_left.empty(); }
+  static bool StreamLeft(const Client& client) {
+    return client.stream != nullptr && client.stream_offset < client.stream->Size();
+  }
+  bool OutputPending(const Client& client) const {
+    return !client.head_left.empty() || !client.body_left.empty() || StreamLeft(client);
+  }
 
   HttpHandler& handler_;
   std::array<Client, kMaxHttpClients> clients_{};
