@@ -10,15 +10,6 @@
 
 namespace ipe {
 
-ParameterAddress ParameterAddressOf(std::uint16_t number) {
-  using cip::drive::ParameterClass;
-  if (const auto instance = cip::drive::ParameterInstance(ParameterClass::k64, number)) {
-    return {cip::drive::kClassParameter64, *instance};
-  }
-  const auto instance = cip::drive::ParameterInstance(ParameterClass::k65, number);
-  return {cip::drive::kClassParameter65, instance.value_or(number)};
-}
-
 AccessResult EipDriveAccess::Read(std::uint16_t number) {
   const ParameterAddress address = ParameterAddressOf(number);
   const CipReply reply = session_.Request(cip::kServiceGetAttributeSingle,

@@ -25,14 +25,6 @@ class DriveAccess {
   virtual AccessResult Write(std::uint16_t number, std::uint16_t word) = 0;
 };
 
-// Class 0x64 attribute 3 (instance = number + 0x4000 for 0000-0FFF, number - 0x8000 for F000-FFFF),
-// class 0x65 (instance = number) for the rest (the c-parameters Cxxx).
-struct ParameterAddress {
-  std::uint16_t class_id = 0;
-  std::uint32_t instance = 0;
-};
-ParameterAddress ParameterAddressOf(std::uint16_t number);
-
 class EipDriveAccess final : public DriveAccess {
  public:
   explicit EipDriveAccess(EipSession& session) : session_(session) {}

@@ -5,6 +5,7 @@
 #include "cip/byte_io.h"
 #include "cip/cip_status.h"
 #include "cip/cpf.h"
+#include "cip/drive/parameter_object.h"
 #include "cip/epath.h"
 #include "cip/message_router.h"
 
@@ -57,6 +58,15 @@ void ReadShortString(cip::ByteReader& in, cip::FixedString<32>& text) {
 }
 
 }  // namespace
+
+ParameterAddress ParameterAddressOf(std::uint16_t number) {
+  using cip::drive::ParameterClass;
+  if (const auto instance = cip::drive::ParameterInstance(ParameterClass::k64, number)) {
+    return {cip::drive::kClassParameter64, *instance};
+  }
+  const auto instance = cip::drive::ParameterInstance(ParameterClass::k65, number);
+  return {cip::drive::kClassParameter65, instance.value_or(number)};
+}
 
 Bytes EncodeCipRequest(std::uint8_t service, const CipPath& path, std::span<const std::uint8_t> data) {
   std::uint8_t path_bytes[16];

@@ -22,6 +22,15 @@ struct CipPath {
   std::optional<std::uint16_t> attribute;
 };
 
+// Class 0x64 attribute 3 (instance = number + 0x4000 for 0000-0FFF, number - 0x8000 for F000-FFFF),
+// class 0x65 (instance = number) for the rest (the c-parameters Cxxx).
+// Where a drive register lives among the card's Parameter objects (docs/drive-objects.md).
+struct ParameterAddress {
+  std::uint16_t class_id = 0;
+  std::uint32_t instance = 0;
+};
+ParameterAddress ParameterAddressOf(std::uint16_t number);
+
 // The message router request: service, path (logical segments), data.
 Bytes EncodeCipRequest(std::uint8_t service, const CipPath& path, std::span<const std::uint8_t> data);
 

@@ -68,6 +68,7 @@ ParsedValue ParseValue(std::string_view text, const ParameterInfo& info) {
     v.raw = static_cast<std::int32_t>(value);
     return v;
   }
+  if (number.empty()) return Fail(info, text, "is not a number");
   if (!unit.empty() && !EqualsIgnoringCase(unit, info.unit)) {
     return Fail(info, text,
                 info.unit.empty() ? "has a unit, but " + info.title + " is a plain number"
