@@ -1,6 +1,8 @@
 #include "file_transfer.h"
 
 #include "cip/byte_io.h"
+#include "eip_codec.h"
+#include "failure.h"
 
 namespace ipe {
 
@@ -37,6 +39,44 @@ std::uint16_t FileChecksum(std::span<const std::uint8_t> file) {
   std::uint16_t sum = 0;
   for (std::uint8_t byte : file) sum = static_cast<std::uint16_t>(sum + byte);
   return static_cast<std::uint16_t>(0x10000u - sum);
+}
+
+UploadResult UploadFile(const FileRequest& request, std::uint8_t max_transfer_size) {
+  UploadResult result;
+  auto fail = [&result](int code, std::string error) {
+    result.exit_code = code;
+    result.error = std::move(error);
+    result.content.clear();
+    return result;
+  };
+  const CipReply initiate = request(kServiceInitiateUpload, EncodeInitiateUpload(max_transfer_size));
+  if (!initiate.ok()) return fail(kExitRefused, "Initiate_Upload refused by the card: " + FormatCipStatus(initiate));
+  const std::optional<InitiateUploadReply> size = DecodeInitiateUploadReply(initiate.data);
+  if (!size || size->transfer_size == 0) return fail(kExitUnreachable, "the Initiate_Upload reply does not decode");
+
+  const std::size_t most_packets = size->file_size / size->transfer_size + 1;
+  std::uint8_t number = 0;
+  for (std::size_t packet = 0;; ++packet, ++number) {
+    if (packet >= most_packets) return fail(kExitUnreachable, "more packets than the announced file size allows");
+    const CipReply reply = request(kServiceUploadTransfer, EncodeUploadTransfer(number));
+    if (!reply.ok()) return fail(kExitRefused, "Upload_Transfer refused by the card: " + FormatCipStatus(reply));
+    const std::optional<UploadTransferReply> transfer = DecodeUploadTransferReply(reply.data);
+    if (!transfer) return fail(kExitUnreachable, "Upload_Transfer reply " + std::to_string(number) + " does not decode");
+    if (transfer->transfer_number != number) {
+      return fail(kExitUnreachable, "Upload_Transfer " + std::to_string(number) + " answered as " +
+                                        std::to_string(transfer->transfer_number));
+    }
+    if (transfer->type == TransferPacket::kAbort) return fail(kExitRefused, "the card aborted the transfer");
+    result.content.insert(result.content.end(), transfer->data.begin(), transfer->data.end());
+    if (result.content.size() > size->file_size) return fail(kExitUnreachable, "more data than the announced file size");
+    if (!transfer->checksum) continue;
+    if (result.content.size() != size->file_size) {
+      return fail(kExitUnreachable, std::to_string(result.content.size()) + " bytes received, " +
+                                        std::to_string(size->file_size) + " announced");
+    }
+    if (*transfer->checksum != FileChecksum(result.content)) return fail(kExitUnreachable, "checksum mismatch");
+    return result;
+  }
 }
 
 }  // namespace ipe

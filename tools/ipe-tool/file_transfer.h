@@ -11,7 +11,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <string>
 #include <span>
 #include <vector>
 
@@ -45,5 +47,21 @@ struct UploadTransferReply {
 std::optional<UploadTransferReply> DecodeUploadTransferReply(std::span<const std::uint8_t> data);
 
 std::uint16_t FileChecksum(std::span<const std::uint8_t> file);
+
+// One request to the file instance: service and request data in, the reply (eip_codec.h's CipReply) out.
+struct CipReply;
+using FileRequest = std::function<CipReply(std::uint8_t service, std::span<const std::uint8_t> data)>;
+
+// The whole upload: Initiate_Upload, then Upload_Transfer 0, 1, ... (wrapping at 256) until a last
+// packet, checked against the announced size and the checksum. exit_code (failure.h) 0 with the file,
+// 1 when the card refused or aborted (error names the status), 3 when a reply does not decode, the
+// numbers do not follow, the size or the checksum is wrong, or the card sends more packets than the
+// size allows.
+struct UploadResult {
+  int exit_code = 0;
+  std::string error;
+  std::vector<std::uint8_t> content;
+};
+UploadResult UploadFile(const FileRequest& request, std::uint8_t max_transfer_size);
 
 }  // namespace ipe
