@@ -34,6 +34,11 @@ TEST(IpeEipCodec, GetAttributeSingleOfAccInsideSendRRData) {
                                         1, 0, 0, 0}));
 }
 
+TEST(IpeEipCodec, ListIdentityAsksForAnAnswerWithin500Ms) {
+  EXPECT_EQ(EncodeListIdentityRequest(),
+            (B{0x63, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xF4, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+}
+
 TEST(IpeEipCodec, DecodesRepliesWithTheirStatus) {
   // SendRRData data: handle, timeout, 2 items: null address, unconnected data = reply 0x8E, status 0.
   const B ok{0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0xB2, 0, 6, 0, 0x8E, 0, 0, 0, 0x32, 0x00};

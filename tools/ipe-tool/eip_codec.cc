@@ -92,7 +92,14 @@ Bytes EncodeUnRegisterSession(std::uint32_t session) {
   return Encapsulate(cip::EncapCommand::kUnRegisterSession, session, {});
 }
 
-Bytes EncodeListIdentityRequest() { return Encapsulate(cip::EncapCommand::kListIdentity, 0, {}); }
+Bytes EncodeListIdentityRequest() {
+  // Bytes 0-1 of the sender context: the longest a target may delay its answer to a broadcast, in ms
+  // (0 means 2000). 500 ms, the shortest the card accepts, keeps discover quick.
+  Bytes message = Encapsulate(cip::EncapCommand::kListIdentity, 0, {});
+  message[12] = static_cast<std::uint8_t>(kListIdentityMaxDelayMs & 0xFF);
+  message[13] = static_cast<std::uint8_t>(kListIdentityMaxDelayMs >> 8);
+  return message;
+}
 
 Bytes EncodeSendRRData(std::uint32_t session, std::span<const std::uint8_t> cip_request) {
   std::vector<std::uint8_t> buffer(kScratch + cip_request.size());

@@ -38,6 +38,8 @@ Bytes EncodeCipRequest(std::uint8_t service, const CipPath& path, std::span<cons
 Bytes EncodeRegisterSession();
 Bytes EncodeUnRegisterSession(std::uint32_t session);
 Bytes EncodeSendRRData(std::uint32_t session, std::span<const std::uint8_t> cip_request);
+// ListIdentity asking for an answer within kListIdentityMaxDelayMs.
+inline constexpr std::uint16_t kListIdentityMaxDelayMs = 500;
 Bytes EncodeListIdentityRequest();
 
 // A decoded message router reply.
