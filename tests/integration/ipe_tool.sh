@@ -135,6 +135,21 @@ grep -qx 'acc = 5.0 s  # 0009 Acceleration time 1 (unit per f519)' "$KEEP/drive.
 grep -qx 'dec = 3.0 s  # 0010 Deceleration time 1 (unit per f519)' "$KEEP/drive.bak" || fail "backup has no dec line"
 [ "$(grep -vc '^#' "$KEEP/drive.bak")" = 140 ] || fail "backup holds $(grep -vc '^#' "$KEEP/drive.bak") values, not 140"
 pass "backup: 140 settings with header and progress"
+
+# A running drive is not restored (docs/commissioning.md "Restore decisions"): nothing is written.
+run_ipe 0 set "$A" acc=7
+timeout 30 "$IPE" io "$A" --run --speed 10Hz --duration 5 >"$KEEP/io2" 2>&1 &
+io_pid=$!
+wait_for 8 bash -c "\"$CTL\" \"$CARD_CONTROL\" status | grep -q '\"state\":\"running\"'" || fail "io did not run the drive"
+writes=$(eeprom_writes)
+run_ipe 1 restore "$A" "$KEEP/drive.bak"
+[ "$(tail -1 "$KEEP/err")" = "ipe: restore: the drive is running (fd01 bit 10): stop it first; nothing written" ] \
+  || fail "restore on a running drive: $(cat "$KEEP/err")"
+[ "$(cat "$KEEP/out")" = "acc: 7.0 s -> 5.0 s" ] || fail "restore on a running drive: diff $(cat "$KEEP/out")"
+param_is acc 70 && [ "$(eeprom_writes)" = "$writes" ] || fail "restore wrote to a running drive"
+rc=0; wait "$io_pid" || rc=$?
+[ "$rc" = 0 ] || { cat "$KEEP/io2" >&2; fail "the second ipe io exited $rc"; }
+pass "restore on a running drive: exit 1, the diff shown, nothing written"
 stop_card
 
 # ---- card B: fresh, Modbus TCP (factory c500 = 0) ----------------------------------------------------

@@ -5,17 +5,13 @@
 #include <set>
 #include <sstream>
 
+#include "text.h"
 #include "values.h"
 
 namespace ipe {
 namespace {
 
-std::string Trim(const std::string& text) {
-  const std::size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  const std::size_t last = text.find_last_not_of(" \t\r");
-  return text.substr(first, last - first + 1);
-}
+std::string Trim(const std::string& text) { return std::string(ipe::Trim(std::string_view(text))); }
 
 ParsedBackup Error(std::size_t line, const std::string& message) {
   ParsedBackup parsed;

@@ -37,6 +37,18 @@ std::vector<std::uint8_t> ConnectionPath(const Options& options) {
   return std::vector<std::uint8_t>(out.written().begin(), out.written().end());
 }
 
+// A Forward_Open/Forward_Close to the Connection Manager (class 6 instance 1); a refusal ends the command.
+template <typename Request, typename Encoder>
+CipReply ConnectionManagerRequest(EipSession& session, std::uint8_t service, const char* name,
+                                  const Request& request, Encoder encode) {
+  std::vector<std::uint8_t> data(128);
+  cip::ByteWriter out(data);
+  encode(request, out);
+  const CipReply reply = session.Request(service, {cip::kClassConnectionManager, 1, std::nullopt}, out.written());
+  if (!reply.ok()) Fail(kExitRefused, std::string("io: ") + name + " refused by the card: " + FormatCipStatus(reply));
+  return reply;
+}
+
 struct OpenConnection {
   std::uint32_t o_to_t_id = 0;
   std::uint32_t t_to_o_id = 0;
@@ -59,12 +71,8 @@ OpenConnection ForwardOpen(EipSession& session, const Options& options, const st
                     cip::ConnectionType::kPointToPoint, false};  // sequence count + 71
   request.transport = {false, cip::kTriggerCyclic, 1};
   request.connection_path = path;
-  std::vector<std::uint8_t> data(128);
-  cip::ByteWriter out(data);
-  cip::EncodeForwardOpen(request, out);
-  const CipReply reply = session.Request(cip::kServiceForwardOpen, {cip::kClassConnectionManager, 1, std::nullopt},
-                                         out.written());
-  if (!reply.ok()) Fail(kExitRefused, "io: Forward_Open refused by the card: " + FormatCipStatus(reply));
+  const CipReply reply =
+      ConnectionManagerRequest(session, cip::kServiceForwardOpen, "Forward_Open", request, cip::EncodeForwardOpen);
   cip::ByteReader in(reply.data);
   OpenConnection open;
   open.o_to_t_id = in.U32();
@@ -80,12 +88,7 @@ void ForwardClose(EipSession& session, const std::vector<std::uint8_t>& path, co
   request.timeout_ticks = 0x0E;
   request.triad = triad;
   request.connection_path = path;
-  std::vector<std::uint8_t> data(64);
-  cip::ByteWriter out(data);
-  cip::EncodeForwardClose(request, out);
-  const CipReply reply = session.Request(cip::kServiceForwardClose, {cip::kClassConnectionManager, 1, std::nullopt},
-                                         out.written());
-  if (!reply.ok()) Fail(kExitRefused, "io: Forward_Close refused by the card: " + FormatCipStatus(reply));
+  ConnectionManagerRequest(session, cip::kServiceForwardClose, "Forward_Close", request, cip::EncodeForwardClose);
   std::fprintf(stderr, "io: connection closed (Forward_Close)\n");
 }
 

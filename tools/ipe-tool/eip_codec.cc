@@ -57,6 +57,18 @@ void ReadShortString(cip::ByteReader& in, cip::FixedString<32>& text) {
   if (!text.Assign(chars)) (void)text.Assign(chars.first(cip::FixedString<32>::kCapacity));
 }
 
+// Identity attributes 1-7 in their wire order (Get_Attributes_All and the ListIdentity item alike).
+void ReadIdentityFields(cip::ByteReader& in, cip::IdentityItem& identity) {
+  identity.vendor_id = in.U16();
+  identity.device_type = in.U16();
+  identity.product_code = in.U16();
+  identity.major_revision = in.U8();
+  identity.minor_revision = in.U8();
+  identity.status = in.U16();
+  identity.serial_number = in.U32();
+  ReadShortString(in, identity.product_name);
+}
+
 }  // namespace
 
 ParameterAddress ParameterAddressOf(std::uint16_t number) {
@@ -150,14 +162,7 @@ std::optional<cip::IdentityItem> DecodeListIdentityReply(std::span<const std::ui
   cip::IdentityItem identity;
   (void)item.U16();  // encapsulation protocol version
   identity.socket_address = cip::DecodeSocketAddress(item);
-  identity.vendor_id = item.U16();
-  identity.device_type = item.U16();
-  identity.product_code = item.U16();
-  identity.major_revision = item.U8();
-  identity.minor_revision = item.U8();
-  identity.status = item.U16();
-  identity.serial_number = item.U32();
-  ReadShortString(item, identity.product_name);
+  ReadIdentityFields(item, identity);
   identity.state = item.U8();
   if (!in.ok() || !item.ok()) return std::nullopt;
   return identity;
@@ -166,14 +171,7 @@ std::optional<cip::IdentityItem> DecodeListIdentityReply(std::span<const std::ui
 std::optional<cip::IdentityItem> DecodeIdentityAttributes(std::span<const std::uint8_t> data) {
   cip::ByteReader in(data);
   cip::IdentityItem identity;
-  identity.vendor_id = in.U16();
-  identity.device_type = in.U16();
-  identity.product_code = in.U16();
-  identity.major_revision = in.U8();
-  identity.minor_revision = in.U8();
-  identity.status = in.U16();
-  identity.serial_number = in.U32();
-  ReadShortString(in, identity.product_name);
+  ReadIdentityFields(in, identity);
   if (!in.ok()) return std::nullopt;
   return identity;
 }

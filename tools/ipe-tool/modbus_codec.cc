@@ -9,14 +9,19 @@
 namespace ipe {
 namespace {
 
+// The MBAP header of a request whose PDU is `pdu_length` bytes (the core writes it as for an answer).
+void WriteRequestHeader(modbus::ByteWriter& out, std::uint16_t transaction, std::uint8_t unit, std::size_t pdu_length) {
+  modbus::MbapHeader header;
+  header.transaction_id = transaction;
+  header.unit_id = unit;
+  modbus::WriteMbapHeader(out, header, pdu_length);
+}
+
 std::vector<std::uint8_t> Adu(std::uint16_t transaction, std::uint8_t unit, std::uint8_t function,
                               std::uint16_t first, std::uint16_t second) {
   std::vector<std::uint8_t> buffer(modbus::kMbapHeaderBytes + 5);
   modbus::ByteWriter out(buffer);
-  modbus::MbapHeader header;
-  header.transaction_id = transaction;
-  header.unit_id = unit;
-  modbus::WriteMbapHeader(out, header, 5);
+  WriteRequestHeader(out, transaction, unit, 5);
   out.U8(function);
   out.U16(first);
   out.U16(second);
@@ -38,10 +43,7 @@ std::vector<std::uint8_t> EncodeWriteSingleRegister(std::uint16_t transaction, s
 std::vector<std::uint8_t> EncodeReadDeviceId(std::uint16_t transaction, std::uint8_t unit) {
   std::vector<std::uint8_t> buffer(modbus::kMbapHeaderBytes + 4);
   modbus::ByteWriter out(buffer);
-  modbus::MbapHeader header;
-  header.transaction_id = transaction;
-  header.unit_id = unit;
-  modbus::WriteMbapHeader(out, header, 4);
+  WriteRequestHeader(out, transaction, unit, 4);
   out.U8(modbus::fc::kEncapsulatedInterface);
   out.U8(modbus::fc::kMeiReadDeviceId);
   out.U8(modbus::kDeviceIdRegular);

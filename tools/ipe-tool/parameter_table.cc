@@ -3,19 +3,10 @@
 #include <cctype>
 
 #include "sim/register_table.h"
+#include "text.h"
 
 namespace ipe {
 namespace {
-
-bool EqualsIgnoringCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) {
-      return false;
-    }
-  }
-  return true;
-}
 
 sim::Model ToSim(Model model) { return model == Model::kVfS15 ? sim::Model::kVfS15 : sim::Model::kVfMb1; }
 
