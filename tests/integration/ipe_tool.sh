@@ -138,7 +138,7 @@ pass "backup: 140 settings with header and progress"
 
 # A running drive is not restored (docs/commissioning.md "Restore decisions"): nothing is written.
 run_ipe 0 set "$A" acc=7
-timeout 30 "$IPE" io "$A" --run --speed 10Hz --duration 5 >"$KEEP/io2" 2>&1 &
+timeout 30 "$IPE" io "$A" --run --speed 10Hz >"$KEEP/io2" 2>&1 &
 io_pid=$!
 wait_for 8 bash -c "\"$CTL\" \"$CARD_CONTROL\" status | grep -q '\"state\":\"running\"'" || fail "io did not run the drive"
 writes=$(eeprom_writes)
@@ -147,9 +147,15 @@ run_ipe 1 restore "$A" "$KEEP/drive.bak"
   || fail "restore on a running drive: $(cat "$KEEP/err")"
 [ "$(cat "$KEEP/out")" = "acc: 7.0 s -> 5.0 s" ] || fail "restore on a running drive: diff $(cat "$KEEP/out")"
 param_is acc 70 && [ "$(eeprom_writes)" = "$writes" ] || fail "restore wrote to a running drive"
-rc=0; wait "$io_pid" || rc=$?
-[ "$rc" = 0 ] || { cat "$KEEP/io2" >&2; fail "the second ipe io exited $rc"; }
 pass "restore on a running drive: exit 1, the diff shown, nothing written"
+# Ctrl-C ends io: a stop, then Forward_Close, exit 0, the drive stopped and not tripped.
+kill -INT "$io_pid"
+rc=0; wait "$io_pid" || rc=$?
+[ "$rc" = 0 ] || { cat "$KEEP/io2" >&2; fail "ipe io ended with $rc on SIGINT"; }
+[ "$(tail -1 "$KEEP/io2")" = "io: connection closed (Forward_Close)" ] || fail "io after SIGINT: $(tail -3 "$KEEP/io2")"
+[ "$(status_field output_hz)" = 0.00 ] && [ "$(status_field trip)" = 0 ] && [ "$(status_field state)" = stopped ] \
+  || fail "after io's SIGINT the drive is not stopped and healthy: $("$CTL" "$CARD_CONTROL" status)"
+pass "io on SIGINT: stop, Forward_Close, exit 0, the drive stopped"
 stop_card
 
 # ---- card B: fresh, Modbus TCP (factory c500 = 0) ----------------------------------------------------
@@ -192,9 +198,19 @@ run_ipe 1 set "$B" fa23=1 --modbus --port "$mb_port"
 expect_err "ipe: set fa23 = 0x0001: refused by the card: Modbus exception 03 (illegal data value)"
 pass "--modbus get/set, and the card's exception by name"
 
+# ---- help and the wrapper ------------------------------------------------------------------------------
+run_ipe 0 restore --help
+[ "$(head -1 "$KEEP/out")" = "usage: ipe restore HOST FILE [--dry-run] [--modbus [--unit ID]] [--port N] [--timeout MS]" ] \
+  || fail "restore --help: $(head -1 "$KEEP/out")"
+run_ipe 2 restore "$B"
+[ "$(head -1 "$KEEP/err")" = "ipe: wrong number of arguments for 'restore'" ] || fail "usage error: $(cat "$KEEP/err")"
+IPE="$ROOT/tools/ipe" run_ipe 0 --help
+[ "$(head -1 "$KEEP/out")" = "usage: ipe [--port N] [--timeout MS] COMMAND ARGS..." ] || fail "tools/ipe --help: $(cat "$KEEP/out")"
+pass "--help for the tool (through the tools/ipe wrapper) and a command; a usage error exits 2"
+
 # ---- unreachable ---------------------------------------------------------------------------------------
 run_ipe 3 get 127.0.0.53 acc --timeout 1000
-expect_err "ipe: 127.0.0.53:44818: Connection refused"
+expect_err "ipe: 127.0.0.53:44818: Connection refused (is the card on EtherNet/IP, c500 = 1? --modbus reaches a Modbus card)"
 run_ipe 3 discover --broadcast 127.0.0.53 --timeout 500
 expect_err "ipe: discover: no card answered within 500 ms"
 pass "unreachable host and no answer: exit 3"

@@ -34,7 +34,13 @@ Card ConnectCard(const Options& options, const std::string& host) {
     card.access = std::move(access);
     return card;
   }
-  card.eip = std::make_unique<EipSession>(host, DefaultPort(options), timeout);
+  try {
+    card.eip = std::make_unique<EipSession>(host, DefaultPort(options), timeout);
+  } catch (const Failure& failure) {
+    // A card on Modbus TCP (c500 = 0) has its EtherNet/IP port closed: say so.
+    if (failure.code != kExitUnreachable || failure.message.find("Connection refused") == std::string::npos) throw;
+    Fail(failure.code, failure.message + " (is the card on EtherNet/IP, c500 = 1? --modbus reaches a Modbus card)");
+  }
   const CipReply reply = card.eip->Request(cip::kServiceGetAttributesAll, {cip::kClassIdentity, 1, std::nullopt});
   if (!reply.ok()) Fail(kExitRefused, host + ": Identity refused: " + FormatCipStatus(reply));
   const std::optional<cip::IdentityItem> identity = DecodeIdentityAttributes(reply.data);
