@@ -27,6 +27,7 @@ EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const Ether
       motor_data_(journal_),
       parameters_64_(cip::drive::ParameterClass::k64, journal_),
       parameters_65_(cip::drive::ParameterClass::k65, journal_),
+      parameters_0f_(journal_, identity_),
       drive_profile_config_(runtime_),
       eip_(device_.encapsulation(), devices.clock, {.keepalive = options.keepalive}),
       io_(connections_, devices.clock, tcpip_),
@@ -38,7 +39,7 @@ base::Status EtherNetIpCard::Start() {
   if (base::Status status = cip::AttachConnectionManager(device_, connections_); !status.ok()) return status;
   if (base::Status status = assemblies_.Register(device_.assemblies()); !status.ok()) return status;
   for (cip::CipObject* object : {&control_supervisor_.object(), &ac_dc_drive_.object(), &motor_data_.object(),
-                                 &parameters_64_.object(), &parameters_65_.object()}) {
+                                 &parameters_64_.object(), &parameters_65_.object(), &parameters_0f_.object()}) {
     if (base::Status status = device_.objects().Register(*object); !status.ok()) return status;
   }
   device_.encapsulation().set_request_lifecycle(&journal_);

@@ -1,6 +1,6 @@
 // The card's whole EtherNet/IP side, assembled (docs/ethernetip.md "In the firmware"): the CIP objects
 // on the card's providers, the Connection Manager with the drive profile's assemblies, the drive
-// objects 0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the encapsulation server on TCP/UDP
+// objects 0x0F/0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the encapsulation server on TCP/UDP
 // 44818 and class 1 I/O on UDP 2222. Device-path code: the host and a board build it the same way, from
 // the HAL devices, the netif, the register proxy and the parameter writer they already have.
 //
@@ -19,6 +19,7 @@
 #include "cip/cip_device.h"
 #include "cip/connection_manager.h"
 #include "cip/drive/ac_dc_drive_object.h"
+#include "cip/drive/cip_parameter_object.h"
 #include "cip/drive/control_lock.h"
 #include "cip/drive/control_supervisor_object.h"
 #include "cip/drive/drive_access_journal.h"
@@ -133,6 +134,7 @@ class EtherNetIpCard final : private DriveControlListener {
   cip::drive::MotorDataObject motor_data_;
   cip::drive::ParameterObject parameters_64_;
   cip::drive::ParameterObject parameters_65_;
+  cip::drive::CipParameterObject parameters_0f_;  // the parameter table (docs/eds.md)
   DriveProfileConfig drive_profile_config_;
   EipService eip_;
   IoService io_;
