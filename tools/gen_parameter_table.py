@@ -74,11 +74,8 @@ def main(argv):
     parser.add_argument("--csv", required=True, help="the register table (registers.csv)")
     parser.add_argument("--out", required=True, help="write the generated C++ header here")
     args = parser.parse_args(argv)
-    rows, errors = registers.validate(args.csv)
-    if errors:
-        for error in errors:
-            print(error, file=sys.stderr)
-        print("%s: %d problem(s)" % (args.csv, len(errors)), file=sys.stderr)
+    rows = registers.validate_or_report(args.csv)
+    if rows is None:
         return 1
     registers.write_if_changed(args.out, generate(rows, os.path.basename(args.csv)))
     return 0
