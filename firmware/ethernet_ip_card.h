@@ -27,6 +27,7 @@
 #include "cip/drive/drive_profile_runtime.h"
 #include "cip/drive/motor_data_object.h"
 #include "cip/drive/parameter_object.h"
+#include "cip/eds/eds_file.h"
 #include "cip_connection_supervisor.h"
 #include "cip_providers.h"
 #include "configurable_service.h"
@@ -88,6 +89,11 @@ class EtherNetIpCard final : private DriveControlListener {
   const cip::drive::DriveAccessJournal& journal() const { return journal_; }
   const cip::drive::DriveAssemblies& assemblies() const { return assemblies_; }
   const cip::drive::ControlLock& control_lock() const { return control_lock_; }
+  // The EDS of the inverter model the card has detected (docs/eds.md "Serving"): what the File object
+  // and the HTTP download read. Each model's size and checksum are counted once, at construction.
+  const cip::FileContent& eds_file() const {
+    return identity_.Model() == cip::DriveModel::kVfS15 ? eds_vf_s15_ : eds_vf_mb1_;
+  }
 
  private:
   // The drive status the Control Supervisor follows: FD01 from the cyclic exchange, unknown while the
@@ -135,6 +141,8 @@ class EtherNetIpCard final : private DriveControlListener {
   cip::drive::ParameterObject parameters_64_;
   cip::drive::ParameterObject parameters_65_;
   cip::drive::CipParameterObject parameters_0f_;  // the parameter table (docs/eds.md)
+  cip::eds::EdsFile eds_vf_mb1_{cip::DriveModel::kVfMb1};
+  cip::eds::EdsFile eds_vf_s15_{cip::DriveModel::kVfS15};
   DriveProfileConfig drive_profile_config_;
   EipService eip_;
   IoService io_;
