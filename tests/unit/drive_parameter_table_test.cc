@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string_view>
 
 namespace drive_link {
@@ -32,26 +33,23 @@ TEST(DriveParameterTable, AccAsInTheCsv) {
   EXPECT_EQ(acc.models, kBothModels);
 }
 
+// Number, VF-MB1 limits, decimals and unit of a row, as the CSV has them.
+void ExpectRow(std::string_view title, std::uint16_t number, ParameterLimits limits, std::uint8_t decimals,
+               std::string_view unit) {
+  SCOPED_TRACE(title);
+  const ParameterInfo& row = Row(title);
+  EXPECT_EQ(row.number, number);
+  EXPECT_EQ(row.vf_mb1.min, limits.min);
+  EXPECT_EQ(row.vf_mb1.max, limits.max);
+  EXPECT_EQ(row.vf_mb1.default_value, limits.default_value);
+  EXPECT_EQ(row.decimals, decimals);
+  EXPECT_EQ(std::string_view(row.unit), unit);
+}
+
 TEST(DriveParameterTable, DecFhC101AsInTheCsv) {
-  const ParameterInfo& dec = Row("dec");  // 0010, 1-60000, 100, 0.1 s
-  EXPECT_EQ(dec.number, 0x0010);
-  EXPECT_EQ(dec.vf_mb1.min, 1);
-  EXPECT_EQ(dec.vf_mb1.max, 60000);
-  EXPECT_EQ(dec.vf_mb1.default_value, 100);
-  const ParameterInfo& fh = Row("fh");  // 0011, 3000-50000, 8000, 0.01 Hz
-  EXPECT_EQ(fh.number, 0x0011);
-  EXPECT_EQ(fh.vf_mb1.min, 3000);
-  EXPECT_EQ(fh.vf_mb1.max, 50000);
-  EXPECT_EQ(fh.vf_mb1.default_value, 8000);
-  EXPECT_EQ(fh.decimals, 2);
-  EXPECT_EQ(std::string_view(fh.unit), "Hz");
-  const ParameterInfo& c101 = Row("c101");  // C101, 0-5, 4, "-"
-  EXPECT_EQ(c101.number, 0xC101);
-  EXPECT_EQ(c101.vf_mb1.min, 0);
-  EXPECT_EQ(c101.vf_mb1.max, 5);
-  EXPECT_EQ(c101.vf_mb1.default_value, 4);
-  EXPECT_EQ(c101.decimals, 0);
-  EXPECT_EQ(std::string_view(c101.unit), "");
+  ExpectRow("dec", 0x0010, {1, 60000, 100}, 1, "s");     // 0010, 1-60000, 100, 0.1 s
+  ExpectRow("fh", 0x0011, {3000, 50000, 8000}, 2, "Hz");  // 0011, 3000-50000, 8000, 0.01 Hz
+  ExpectRow("c101", 0xC101, {0, 5, 4}, 0, "");            // C101, 0-5, 4, "-"
 }
 
 TEST(DriveParameterTable, ModelLimitsDiffer) {
