@@ -3,6 +3,8 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
+#include <optional>
 #include <span>
 
 #include "cip/connection_manager.h"
@@ -20,9 +22,28 @@ namespace {
 
 using drive_link::ParameterInfo;
 
-constexpr std::string_view kKey = "\n    ";      // a key of a section
-constexpr std::string_view kField = "\n        ";  // a field of a multi-line entry
 constexpr std::uint16_t kNoRegister = 0xFFFF;       // ends in F: never a register
+
+// One value of a Format pattern: a decimal number, a text, hexadecimal digits after 0x, or an EPATH.
+struct Arg {
+  enum class Kind : std::uint8_t { kDec, kText, kHex, kPath };
+  Arg(std::int32_t value) : kind(Kind::kDec), number(value) {}  // NOLINT: implicit on purpose
+  Arg(std::string_view value) : kind(Kind::kText), text(value) {}
+  Arg(const char* value) : kind(Kind::kText), text(value) {}
+  explicit Arg(std::span<const std::uint8_t> value) : kind(Kind::kPath), path(value) {}
+  static Arg Hex(std::uint32_t value, std::uint8_t digits) {
+    Arg arg(static_cast<std::int32_t>(value));
+    arg.kind = Kind::kHex;
+    arg.digits = digits;
+    return arg;
+  }
+
+  Kind kind;
+  std::int32_t number = 0;
+  std::uint8_t digits = 0;
+  std::string_view text;
+  std::span<const std::uint8_t> path;
+};
 
 // The text around the sink: pieces, decimal and hexadecimal numbers. Once the sink has said no, nothing
 // more is offered to it (open() turns false and the loops below stop).
@@ -56,7 +77,6 @@ class Text {
     return *this << std::string_view(digits.data(), static_cast<std::size_t>(count));
   }
   Text& Hex(std::uint32_t value, int count) { return (*this << "0x").HexDigits(value, count); }
-  Text& Quoted(std::string_view text) { return *this << "\"" << text << "\""; }
   // An EPATH as EDS writes it: "20 04 24 14 30 03".
   Text& Path(std::span<const std::uint8_t> bytes) {
     *this << "\"";
@@ -66,10 +86,38 @@ class Text {
     }
     return *this << "\"";
   }
-  Text& Param(std::size_t number) { return (*this << "Param").Dec(static_cast<std::int32_t>(number)); }
-  Text& Assem(std::uint32_t instance) { return (*this << "Assem").Dec(static_cast<std::int32_t>(instance)); }
+  // `pattern` with each '%' replaced by the next argument (a table of text is smaller in flash than a
+  // call per piece; no pattern holds a '%' of its own).
+  Text& Format(std::string_view pattern, std::initializer_list<Arg> args) {
+    const Arg* next = args.begin();
+    while (open_) {
+      const std::size_t mark = pattern.find('%');
+      *this << pattern.substr(0, mark);
+      if (mark == std::string_view::npos || next == args.end()) break;
+      Put(*next++);
+      pattern.remove_prefix(mark + 1);
+    }
+    return *this;
+  }
 
  private:
+  void Put(const Arg& arg) {
+    switch (arg.kind) {
+      case Arg::Kind::kDec:
+        Dec(arg.number);
+        return;
+      case Arg::Kind::kText:
+        *this << arg.text;
+        return;
+      case Arg::Kind::kHex:
+        Hex(static_cast<std::uint32_t>(arg.number), arg.digits);
+        return;
+      case Arg::Kind::kPath:
+        Path(arg.path);
+        return;
+    }
+  }
+
   EdsSink& sink_;
   bool open_ = true;
 };
@@ -78,25 +126,18 @@ class Text {
 
 void WriteHeader(DriveModel model, Text& out) {
   const std::string_view name = ProductNameOf(model);
-  out << "$ EDS of the IPE002Z EtherNet/IP option card on a Toshiba " << name << " inverter.\n"
-      << "$ Generated from the card firmware's own tables (docs/eds.md); the card serves the same bytes.\n";
-  out << "\n[File]" << kKey << "DescText = " << "\"IPE002Z EtherNet/IP option card on a " << name << "\";";
   // The EDS changes with the firmware: its revision is the Identity revision.
-  out << kKey << "CreateDate = 11-27-2026;" << kKey << "CreateTime = 12:00:00;";
-  out << kKey << "ModDate = 11-27-2026;" << kKey << "ModTime = 12:00:00;";
-  out << kKey << "Revision = ";
-  out.Dec(kMajorRevision) << ".";
-  out.Dec(kMinorRevision) << ";\n";
-
-  out << "\n[Device]" << kKey << "VendCode = ";
-  out.Dec(kVendorIdToshiba) << ";" << kKey << "VendName = \"Toshiba\";" << kKey << "ProdType = ";
-  out.Dec(kDeviceTypeAcDrive) << ";" << kKey << "ProdTypeStr = \"AC Drive\";" << kKey << "ProdCode = ";
-  out.Dec(ProductCodeOf(model)) << ";" << kKey << "MajRev = ";
-  out.Dec(kMajorRevision) << ";" << kKey << "MinRev = ";
-  out.Dec(kMinorRevision) << ";" << kKey << "ProdName = ";
-  out.Quoted(name) << ";" << kKey << "Catalog = \"IPE002Z\";\n";
-
-  out << "\n[Device Classification]" << kKey << "Class1 = EtherNetIP;\n";
+  out.Format(
+      "$ EDS of the IPE002Z EtherNet/IP option card on a Toshiba % inverter.\n"
+      "$ Generated from the card firmware's own tables (docs/eds.md); the card serves the same bytes.\n"
+      "\n[File]\n    DescText = \"IPE002Z EtherNet/IP option card on a %\";\n"
+      "    CreateDate = 11-27-2026;\n    CreateTime = 12:00:00;\n    ModDate = 11-27-2026;\n    ModTime = 12:00:00;\n"
+      "    Revision = %.%;\n"
+      "\n[Device]\n    VendCode = %;\n    VendName = \"Toshiba\";\n    ProdType = %;\n    ProdTypeStr = \"AC Drive\";\n"
+      "    ProdCode = %;\n    MajRev = %;\n    MinRev = %;\n    ProdName = \"%\";\n    Catalog = \"IPE002Z\";\n"
+      "\n[Device Classification]\n    Class1 = EtherNetIP;\n",
+      {name, name, kMajorRevision, kMinorRevision, kVendorIdToshiba, kDeviceTypeAcDrive, ProductCodeOf(model),
+       kMajorRevision, kMinorRevision, name});
 }
 
 // ---- [Params], [Groups] -------------------------------------------------------------------------------
@@ -105,10 +146,6 @@ void WriteHeader(DriveModel model, Text& out) {
 std::size_t RpiParam() { return drive_link::CardParameters().size() + 1; }
 
 void WriteTableParam(std::size_t number, const ParameterInfo& row, drive_link::InverterModel model, Text& out) {
-  out << kKey;
-  // Three lines: reserved, link path size and path, descriptor, type, size; name, units, help; min, max,
-  // default, scaling multiplier, divisor, base, offset, the four scaling links (none), decimal places.
-  out.Param(number) << " =" << kField << "0, ";
   // The value's path: attribute 1 of Parameter object instance `number`, 8- or 16-bit instance segment.
   const auto instance = static_cast<std::uint16_t>(number);
   std::array<std::uint8_t, 8> path = {0x20, drive::kClassParameter};
@@ -124,20 +161,14 @@ void WriteTableParam(std::size_t number, const ParameterInfo& row, drive_link::I
   }
   path[size++] = 0x30;
   path[size++] = drive::kParameterValue;
-  out.Dec(static_cast<std::int32_t>(size)) << ",";
-  out.Path(std::span<const std::uint8_t>(path).first(size));
-  out << ", ";
-  out.Hex(drive::ParameterDescriptor(row), 4) << ", ";
-  out.Hex(drive::ParameterDataType(row), 2) << ", 2," << kField;
-  out.Quoted(row.title) << ", ";
-  out.Quoted(row.unit) << ", ";
-  out.Quoted(row.help) << "," << kField;
   const drive_link::ParameterLimits& limits = row.Limits(model);
-  out.Dec(row.Value(limits.min)) << ",";
-  out.Dec(row.Value(limits.max)) << ",";
-  out.Dec(row.Value(limits.default_value)) << ", 1,";
-  out.Dec(drive::ScalingDivisor(row)) << ",1,0, ,,,, ";
-  out.Dec(row.decimals) << ";";
+  // Three lines: reserved, link path size and path, descriptor, type, size; name, units, help; min, max,
+  // default, scaling multiplier, divisor, base, offset, the four scaling links (none), decimal places.
+  out.Format("\n    Param% =\n        0, %,%, %, %, 2,\n        \"%\", \"%\", \"%\",\n        %,%,%, 1,%,1,0, ,,,, %;",
+             {static_cast<std::int32_t>(number), static_cast<std::int32_t>(size),
+              Arg(std::span<const std::uint8_t>(path).first(size)), Arg::Hex(drive::ParameterDescriptor(row), 4),
+              Arg::Hex(drive::ParameterDataType(row), 2), row.title, row.unit, row.help, row.Value(limits.min),
+              row.Value(limits.max), row.Value(limits.default_value), drive::ScalingDivisor(row), row.decimals});
 }
 
 void WriteParams(DriveModel model, Text& out) {
@@ -147,11 +178,11 @@ void WriteParams(DriveModel model, Text& out) {
   for (std::size_t i = 0; i < rows.size() && out.open(); ++i) WriteTableParam(i + 1, rows[i], inverter, out);
   // The RPI of every connection (µs): the Connection Manager's floor and ceiling.
   constexpr ConnectionManagerOptions kCard;
-  out << kKey;
-  out.Param(RpiParam()) << " =" << kField << "0, ,, 0x0000, 0xC8, 4," << kField
-                        << "\"RPI\", \"us\", \"Requested packet interval of an I/O connection\"," << kField;
-  out.Dec(static_cast<std::int32_t>(kCard.min_rpi)) << ",";
-  out.Dec(static_cast<std::int32_t>(kCard.max_rpi)) << ",10000, ,,,, ,,,, ;\n";
+  out.Format("\n    Param% =\n        0, ,, 0x0000, 0xC8, 4,\n"
+             "        \"RPI\", \"us\", \"Requested packet interval of an I/O connection\",\n"
+             "        %,%,10000, ,,,, ,,,, ;\n",
+             {static_cast<std::int32_t>(RpiParam()), static_cast<std::int32_t>(kCard.min_rpi),
+              static_cast<std::int32_t>(kCard.max_rpi)});
 }
 
 struct Group {
@@ -171,13 +202,12 @@ void WriteGroups(Text& out) {
   const std::span<const ParameterInfo> rows = drive_link::CardParameters();
   for (std::size_t g = 0; g < kGroups.size(); ++g) {
     const Group& group = kGroups[g];
-    const auto in_group = [&group](const ParameterInfo& row) { return row.number >= group.first && row.number <= group.last; };
+    const auto in_group = [&group](const ParameterInfo& row) {
+      return row.number >= group.first && row.number <= group.last;
+    };
     std::int32_t count = 0;
     for (const ParameterInfo& row : rows) count += in_group(row) ? 1 : 0;
-    out << kKey << "Group";
-    out.Dec(static_cast<std::int32_t>(g + 1)) << " =" << kField;
-    out.Quoted(group.name) << ", ";
-    out.Dec(count);
+    out.Format("\n    Group% =\n        \"%\", %", {static_cast<std::int32_t>(g + 1), group.name, count});
     std::int32_t written = 0;
     for (std::size_t i = 0; i < rows.size() && out.open(); ++i) {
       if (!in_group(rows[i])) continue;
@@ -230,29 +260,28 @@ std::array<std::uint8_t, 6> AssemblyPath(std::uint32_t instance) {
 void WriteMember(std::uint16_t reg, Text& out) {
   out << "16,";
   if (reg == kNoRegister) return;
-  if (const auto row = drive_link::FindParameterByNumber(reg)) out.Param(*row + 1);
+  const std::optional<std::size_t> row = drive_link::FindParameterByNumber(reg);
+  if (row) out.Format("Param%", {static_cast<std::int32_t>(*row + 1)});
 }
 
 void WriteAssemblies(Text& out) {
-  out << "\n[Assembly]" << kKey << "Object_Name = \"Assembly Object\";" << kKey << "Object_Class_Code = 0x04;";
+  out << "\n[Assembly]\n    Object_Name = \"Assembly Object\";\n    Object_Class_Code = 0x04;";
   for (const AssemblyText& assembly : kAssemblies) {
     // Members are the 16-bit words of the largest size (100/150: 8 words; a connection may use fewer).
     const std::size_t size = drive::AssemblySize(assembly.instance);
-    out << kKey;
-    out.Assem(assembly.instance) << " =" << kField;
-    out.Quoted(assembly.name) << "," << kField;
-    out.Path(AssemblyPath(assembly.instance)) << "," << kField;
-    out.Dec(static_cast<std::int32_t>(size)) << "," << kField << "0x0000," << kField << ",," << kField;
+    out.Format("\n    Assem% =\n        \"%\",\n        %,\n        %,\n        0x0000,\n        ,,\n        ",
+               {assembly.instance, assembly.name, Arg(std::span<const std::uint8_t>(AssemblyPath(assembly.instance))),
+                static_cast<std::int32_t>(size)});
     for (std::size_t word = 0; word < size / 2; ++word) {
       if (word != 0) out << ",";
       WriteMember(word == 0 ? assembly.word1 : word == 1 ? assembly.word2 : kNoRegister, out);
     }
     out << ";";
   }
-  out << kKey;
-  out.Assem(drive::kInputOnlyHeartbeat) << " =" << kField << "\"Input-only heartbeat\"," << kField;
-  out.Path(AssemblyPath(drive::kInputOnlyHeartbeat)) << "," << kField << "0," << kField << "0x0000," << kField
-                                                     << ",,;\n";
+  const std::array<std::uint8_t, 6> heartbeat = AssemblyPath(drive::kInputOnlyHeartbeat);
+  out.Format("\n    Assem% =\n        \"Input-only heartbeat\",\n"
+             "        %,\n        0,\n        0x0000,\n        ,,;\n",
+             {drive::kInputOnlyHeartbeat, Arg(std::span<const std::uint8_t>(heartbeat))});
 }
 
 // ---- [Connection Manager] ----------------------------------------------------------------------------
@@ -276,28 +305,28 @@ constexpr ConnectionKind kListenOnly = {kClass1Cyclic | 1U << 24, 0x44240305, "L
 void WriteConnection(std::int32_t number, const ConnectionKind& kind, std::uint16_t consumed, std::uint16_t produced,
                      Text& out) {
   const bool owner = &kind == &kExclusiveOwner;
-  out << kKey << "Connection";
-  out.Dec(number) << " =" << kField;
-  out.Hex(kind.trigger_transport, 8) << "," << kField;
-  out.Hex(kind.parameters, 8) << "," << kField;
-  out.Param(RpiParam()) << ",";
-  out.Dec(owner ? static_cast<std::int32_t>(drive::AssemblySize(consumed)) : 0) << ",";
-  if (consumed != drive::kListenOnlyHeartbeat) out.Assem(consumed);  // 198 is a point, not an instance
-  out << "," << kField;
-  out.Param(RpiParam()) << ",";
-  out.Dec(static_cast<std::int32_t>(drive::AssemblySize(produced))) << ",";
-  out.Assem(produced) << "," << kField << ",," << kField << ",," << kField << "\"" << kind.name;
-  if (owner) out.Dec(consumed) << "/";
-  out.Dec(produced) << "\"," << kField << "\"\"," << kField;
-  const std::array<std::uint8_t, 8> path = {
-      0x20, 0x04, 0x24, static_cast<std::uint8_t>(drive::kConfigurationInstance), 0x2C, static_cast<std::uint8_t>(consumed),
-      0x2C, static_cast<std::uint8_t>(produced)};
-  out.Path(path) << ";";
+  out.Format("\n    Connection% =\n        %,\n        %,\n        Param%,%,",
+             {number, Arg::Hex(kind.trigger_transport, 8), Arg::Hex(kind.parameters, 8),
+              static_cast<std::int32_t>(RpiParam()),
+              owner ? static_cast<std::int32_t>(drive::AssemblySize(consumed)) : 0});
+  if (consumed != drive::kListenOnlyHeartbeat) out.Format("Assem%", {consumed});  // 198: a point, no instance
+  out.Format(",\n        Param%,%,Assem%,\n        ,,\n        ,,\n        \"%",
+             {static_cast<std::int32_t>(RpiParam()), static_cast<std::int32_t>(drive::AssemblySize(produced)),
+              produced, kind.name});
+  if (owner) out.Format("%/", {consumed});
+  const std::array<std::uint8_t, 8> path = {0x20,
+                                            0x04,
+                                            0x24,
+                                            static_cast<std::uint8_t>(drive::kConfigurationInstance),
+                                            0x2C,
+                                            static_cast<std::uint8_t>(consumed),
+                                            0x2C,
+                                            static_cast<std::uint8_t>(produced)};
+  out.Format("%\",\n        \"\",\n        %;", {produced, Arg(std::span<const std::uint8_t>(path))});
 }
 
 void WriteConnections(Text& out) {
-  out << "\n[Connection Manager]" << kKey << "Object_Name = \"Connection Manager Object\";" << kKey
-      << "Object_Class_Code = 0x06;";
+  out << "\n[Connection Manager]\n    Object_Name = \"Connection Manager Object\";\n    Object_Class_Code = 0x06;";
   std::int32_t number = 1;
   for (const std::uint16_t output : drive::kOutputInstances) {
     WriteConnection(number++, kExclusiveOwner, output, drive::PairedInput(output), out);
@@ -315,24 +344,20 @@ void WriteConnections(Text& out) {
 
 void WriteClass(std::string_view section, std::string_view name, std::uint16_t revision, std::uint16_t class_id,
                 std::uint32_t instances, Text& out) {
-  out << "\n[" << section << "]" << kKey << "Revision = ";
-  out.Dec(revision) << ";" << kKey << "Object_Name = ";
-  out.Quoted(name) << ";" << kKey << "Object_Class_Code = ";
-  out.Hex(class_id, 2) << ";" << kKey << "MaxInst = ";
-  out.Dec(static_cast<std::int32_t>(instances)) << ";" << kKey << "Number_Of_Static_Instances = ";
-  out.Dec(static_cast<std::int32_t>(instances)) << ";" << kKey << "Max_Number_Of_Dynamic_Instances = 0;\n";
+  out.Format("\n[%]\n    Revision = %;\n    Object_Name = \"%\";\n    Object_Class_Code = %;\n    MaxInst = %;\n"
+             "    Number_Of_Static_Instances = %;\n    Max_Number_Of_Dynamic_Instances = 0;\n",
+             {section, revision, name, Arg::Hex(class_id, 2), static_cast<std::int32_t>(instances),
+              static_cast<std::int32_t>(instances)});
 }
 
 void WriteTail(Text& out) {
   constexpr ConnectionManagerOptions kCard;
-  out << "\n[Port]" << kKey << "Port1 = TCP, \"EtherNet/IP\", \"20 F5 24 01\", ";
-  out.Dec(kPortNumber) << ";\n";
-  out << "\n[Capacity]" << kKey << "MaxMsgConnections = ";
-  out.Dec(static_cast<std::int32_t>(kMaxExplicitConnections)) << ";" << kKey << "MaxIOProduceConsume = ";
-  out.Dec(kMaxCipConnections) << ";" << kKey << "MaxConsumersPerMcast = ";
-  out.Dec(static_cast<std::int32_t>(kCard.max_connections_per_point)) << ";" << kKey << "TSpec1 = TxRx, ";
-  out.Dec(static_cast<std::int32_t>(drive::kMaxAssemblySize)) << ", ";
-  out.Dec(static_cast<std::int32_t>(1000000 / kCard.min_rpi)) << ";\n";
+  out.Format("\n[Port]\n    Port1 = TCP, \"EtherNet/IP\", \"20 F5 24 01\", %;\n"
+             "\n[Capacity]\n    MaxMsgConnections = %;\n    MaxIOProduceConsume = %;\n    MaxConsumersPerMcast = %;\n"
+             "    TSpec1 = TxRx, %, %;\n",
+             {kPortNumber, static_cast<std::int32_t>(kMaxExplicitConnections), kMaxCipConnections,
+              static_cast<std::int32_t>(kCard.max_connections_per_point),
+              static_cast<std::int32_t>(drive::kMaxAssemblySize), static_cast<std::int32_t>(1000000 / kCard.min_rpi)});
   WriteClass("Identity Class", "Identity Object", kIdentityClassRevision, kClassIdentity, 1, out);
   WriteClass("TCP/IP Interface Class", "TCP/IP Interface Object", kTcpIpClassRevision, kClassTcpIpInterface, 1, out);
   WriteClass("Ethernet Link Class", "Ethernet Link Object", kEthernetLinkClassRevision, kClassEthernetLink,
