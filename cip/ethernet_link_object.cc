@@ -12,7 +12,7 @@ constexpr std::array<std::uint8_t, 2> kClassServices = {kServiceGetAttributesAll
 constexpr std::array<std::uint8_t, 4> kInstanceServices = {kServiceGetAttributesAll, kServiceGetAttributeSingle,
                                                            kServiceSetAttributeSingle, kServiceGetAndClear};
 constexpr ClassSpec kEthernetLinkClass = {
-    kClassEthernetLink, 3, kClassAttributes, {}, {}, 7, 10, kClassServices, kInstanceServices,
+    kClassEthernetLink, kEthernetLinkClassRevision, kClassAttributes, {}, {}, 7, 10, kClassServices, kInstanceServices,
 };
 constexpr std::array<AttributeSpec, 10> kAttributes = {{
     {1, Access::kGet, true},

@@ -11,7 +11,7 @@ constexpr std::array<std::uint8_t, 2> kClassServices = {kServiceGetAttributesAll
 constexpr std::array<std::uint8_t, 3> kInstanceServices = {kServiceGetAttributesAll, kServiceReset,
                                                            kServiceGetAttributeSingle};
 constexpr ClassSpec kIdentityClass = {
-    kClassIdentity, 1, kClassAttributes, {}, {}, 7, 7, kClassServices, kInstanceServices,
+    kClassIdentity, kIdentityClassRevision, kClassAttributes, {}, {}, 7, 7, kClassServices, kInstanceServices,
 };
 constexpr std::array<AttributeSpec, 7> kAttributes = {{
     {1, Access::kGet, true},
@@ -31,6 +31,12 @@ std::span<const std::uint8_t> Bytes(std::string_view text) {
 }
 
 }  // namespace
+
+std::uint16_t ProductCodeOf(DriveModel model) {
+  return model == DriveModel::kVfS15 ? kProductCodeVfS15 : kProductCodeVfMb1;
+}
+
+std::string_view ProductNameOf(DriveModel model) { return model == DriveModel::kVfS15 ? "VF-S15" : "VF-MB1"; }
 
 std::uint32_t SerialNumberFromMac(const MacAddress& mac) {
   return static_cast<std::uint32_t>(mac[2]) << 24 | static_cast<std::uint32_t>(mac[3]) << 16 |
@@ -52,13 +58,9 @@ std::uint16_t EncodeStatusWord(const DeviceStatus& status) {
 IdentityObject::IdentityObject(const DeviceInfoProvider& device, hal::ResetControl& reset)
     : device_(device), reset_(reset), object_(kIdentityClass, *this) {}
 
-std::uint16_t IdentityObject::ProductCode() const {
-  return device_.Model() == DriveModel::kVfS15 ? kProductCodeVfS15 : kProductCodeVfMb1;
-}
+std::uint16_t IdentityObject::ProductCode() const { return ProductCodeOf(device_.Model()); }
 
-std::string_view IdentityObject::ProductName() const {
-  return device_.Model() == DriveModel::kVfS15 ? "VF-S15" : "VF-MB1";
-}
+std::string_view IdentityObject::ProductName() const { return ProductNameOf(device_.Model()); }
 
 IdentityItem IdentityObject::ListIdentityItem(const SocketAddress& socket_address) const {
   IdentityItem item;

@@ -14,7 +14,7 @@ constexpr std::array<std::uint8_t, 2> kClassServices = {kServiceGetAttributesAll
 constexpr std::array<std::uint8_t, 3> kInstanceServices = {kServiceGetAttributesAll, kServiceGetAttributeSingle,
                                                            kServiceSetAttributeSingle};
 constexpr ClassSpec kTcpIpClass = {
-    kClassTcpIpInterface, 1, kClassAttributes, kOptionalAttributes, {}, 7, 11, kClassServices, kInstanceServices,
+    kClassTcpIpInterface, kTcpIpClassRevision, kClassAttributes, kOptionalAttributes, {}, 7, 11, kClassServices, kInstanceServices,
 };
 constexpr std::array<AttributeSpec, 11> kAttributes = {{
     {1, Access::kGet, true},

@@ -1,6 +1,15 @@
 #include "ethernet_ip_card.h"
 
+#include "cip/identity_object.h"
+
 namespace firmware {
+namespace {
+
+// One name for either model's EDS (its [Device] ProdCode and ProdName say which; docs/eds.md "Serving"):
+// the File object's attribute 4 is fixed when the card starts, before the model is read from FB05.
+constexpr std::string_view kEdsFileName = "IPE002Z.eds";
+
+}  // namespace
 
 cip::drive::DriveStatus EtherNetIpCard::ProxyDriveStatus::CurrentDriveStatus() const {
   cip::drive::DriveStatus status;
@@ -27,7 +36,12 @@ EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const Ether
       motor_data_(journal_),
       parameters_64_(cip::drive::ParameterClass::k64, journal_),
       parameters_65_(cip::drive::ParameterClass::k65, journal_),
-      file_(options.eds),
+      parameters_0f_(journal_, identity_),
+      eds_(identity_),
+      served_eds_(options.eds_override != nullptr
+                      ? *options.eds_override
+                      : cip::ServedFile{&eds_, kEdsFileName, cip::kMajorRevision, cip::kMinorRevision}),
+      file_(served_eds_),
       drive_profile_config_(runtime_),
       eip_(device_.encapsulation(), devices.clock, {.keepalive = options.keepalive}),
       io_(connections_, devices.clock, tcpip_),
@@ -39,7 +53,8 @@ base::Status EtherNetIpCard::Start() {
   if (base::Status status = cip::AttachConnectionManager(device_, connections_); !status.ok()) return status;
   if (base::Status status = assemblies_.Register(device_.assemblies()); !status.ok()) return status;
   for (cip::CipObject* object : {&control_supervisor_.object(), &ac_dc_drive_.object(), &motor_data_.object(),
-                                 &parameters_64_.object(), &parameters_65_.object(), &file_.object()}) {
+                                 &parameters_64_.object(), &parameters_65_.object(), &parameters_0f_.object(),
+                                 &file_.object()}) {
     if (base::Status status = device_.objects().Register(*object); !status.ok()) return status;
   }
   device_.encapsulation().set_request_lifecycle(&journal_);

@@ -1,9 +1,9 @@
 // The card's whole EtherNet/IP side, assembled (docs/ethernetip.md "In the firmware"): the CIP objects
 // on the card's providers, the Connection Manager with the drive profile's assemblies, the drive
-// objects 0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the File object 0x37 with the EDS,
-// the encapsulation server on TCP/UDP 44818 and class 1 I/O on UDP 2222. Device-path code: the host and
-// a board build it the same way, from the HAL devices, the netif, the register proxy and the parameter
-// writer they already have.
+// objects 0x0F/0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the File object 0x37 with the
+// card's EDS, the encapsulation server on TCP/UDP 44818 and class 1 I/O on UDP 2222. Device-path code:
+// the host and a board build it the same way, from the HAL devices, the netif, the register proxy and the
+// parameter writer they already have.
 //
 // The composition root then:
 //   - gives front_ends() to the CardStatusPublisher (each configuration load: c500 opens or closes the
@@ -20,6 +20,7 @@
 #include "cip/cip_device.h"
 #include "cip/connection_manager.h"
 #include "cip/drive/ac_dc_drive_object.h"
+#include "cip/drive/cip_parameter_object.h"
 #include "cip/drive/control_lock.h"
 #include "cip/drive/control_supervisor_object.h"
 #include "cip/drive/drive_access_journal.h"
@@ -27,6 +28,7 @@
 #include "cip/drive/drive_profile_runtime.h"
 #include "cip/drive/motor_data_object.h"
 #include "cip/drive/parameter_object.h"
+#include "cip/eds/eds_file.h"
 #include "cip/file_object.h"
 #include "cip_connection_supervisor.h"
 #include "cip_providers.h"
@@ -61,7 +63,9 @@ struct EtherNetIpCardDevices {
 struct EtherNetIpCardOptions {
   TcpKeepalive keepalive;
   cip::ConnectionManagerOptions connections;
-  cip::ServedFile eds;  // the File object's instance 0xC8 (no content: no instance)
+  // Another file than the card's own EDS for instance 0xC8 and GET /api/eds, outliving the card: the
+  // host's --eds, for tests. Null: the EDS generated from the card's tables (docs/eds.md).
+  const cip::ServedFile* eds_override = nullptr;
 };
 
 class EtherNetIpCard final : private DriveControlListener {
@@ -90,6 +94,9 @@ class EtherNetIpCard final : private DriveControlListener {
   const cip::drive::DriveAccessJournal& journal() const { return journal_; }
   const cip::drive::DriveAssemblies& assemblies() const { return assemblies_; }
   const cip::drive::ControlLock& control_lock() const { return control_lock_; }
+  // What the File object 0x37 instance 0xC8 and GET /api/eds serve: the EDS of the inverter model the
+  // card has detected (docs/eds.md "Serving"), or the options' override.
+  const cip::ServedFile& served_eds() const { return served_eds_; }
 
  private:
   // The drive status the Control Supervisor follows: FD01 from the cyclic exchange, unknown while the
@@ -136,6 +143,9 @@ class EtherNetIpCard final : private DriveControlListener {
   cip::drive::MotorDataObject motor_data_;
   cip::drive::ParameterObject parameters_64_;
   cip::drive::ParameterObject parameters_65_;
+  cip::drive::CipParameterObject parameters_0f_;  // the parameter table (docs/eds.md)
+  cip::eds::DetectedModelEds eds_;                 // generated from the tables, never stored
+  const cip::ServedFile served_eds_;
   cip::FileObject file_;
   DriveProfileConfig drive_profile_config_;
   EipService eip_;

@@ -160,6 +160,17 @@ def validate(path):
     return rows, errors
 
 
+def validate_or_report(path):
+    """The rows of a valid CSV; None after printing every problem to stderr (the generators' exit 1)."""
+    rows, errors = validate(path)
+    if not errors:
+        return rows
+    for error in errors:
+        print(error, file=sys.stderr)
+    print("%s: %d problem(s)" % (path, len(errors)), file=sys.stderr)
+    return None
+
+
 def check_fields(f):
     """Problems of one row, as strings (empty when the row is valid)."""
     p = []
@@ -331,11 +342,8 @@ def main(argv):
                       help="print a Markdown table of every assumed value")
     args = parser.parse_args(argv)
 
-    rows, errors = validate(args.csv)
-    if errors:
-        for error in errors:
-            print(error, file=sys.stderr)
-        print("%s: %d problem(s)" % (args.csv, len(errors)), file=sys.stderr)
+    rows = validate_or_report(args.csv)
+    if rows is None:
         return 1
     if args.out:
         write_if_changed(args.out, generate(rows, os.path.basename(args.csv)))

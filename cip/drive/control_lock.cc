@@ -6,6 +6,7 @@
 #include "cip/cip_status.h"
 #include "cip/drive/ac_dc_drive_object.h"
 #include "cip/drive/assembly_codec.h"
+#include "cip/drive/cip_parameter_object.h"
 #include "cip/drive/control_supervisor_object.h"
 #include "cip/drive/parameter_object.h"
 #include "drive_link/drive_registers.h"
@@ -31,6 +32,12 @@ bool SetsControlParameter(ParameterClass parameter_class, std::uint32_t instance
   return number && drive_link::reg::IsControlRegister(*number);
 }
 
+// A Parameter object 0x0F instance is a row of the card's parameter table.
+bool SetsControlTableParameter(std::uint32_t instance) {
+  const std::span<const drive_link::ParameterInfo> rows = drive_link::CardParameters();
+  return instance >= 1 && instance <= rows.size() && drive_link::reg::IsControlRegister(rows[instance - 1].number);
+}
+
 }  // namespace
 
 bool IsControlRequest(const ServiceRequest& request) {
@@ -51,6 +58,8 @@ bool IsControlRequest(const ServiceRequest& request) {
       return set && attribute == kParameterValueAttribute && SetsControlParameter(ParameterClass::k64, path.instance);
     case kClassParameter65:
       return set && attribute == kParameterValueAttribute && SetsControlParameter(ParameterClass::k65, path.instance);
+    case kClassParameter:
+      return set && attribute == kParameterValue && SetsControlTableParameter(path.instance);
     default:
       return false;
   }

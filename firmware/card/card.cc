@@ -2,7 +2,6 @@
 
 #include "lwip/init.h"
 #include "lwip_port.h"
-#include "placeholder_eds.h"
 
 namespace firmware {
 
@@ -16,9 +15,6 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       port_(devices.port),
       store_(devices.store),
       watchdog_(devices.watchdog),
-      // The EDS the card serves (File object 0x37 instance 0xC8, GET /api/eds): the EDS generator's
-      // file replaces the placeholder here, and only here (a host test may pass its own in options).
-      eds_(options.eds != nullptr ? *options.eds : PlaceholderEds()),
       lwip_(devices),
       netif_(devices.port),
       addressing_(netif_, devices.clock, devices.random),
@@ -31,7 +27,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       parameter_writer_(proxy_),
       eip_card_({devices.port, netif_, addressing_, proxy_, parameter_writer_, devices.store, reset_,
                  devices.random, devices.clock},
-                {.keepalive = options.keepalive, .connections = {}, .eds = eds_}),
+                {.keepalive = options.keepalive, .connections = {}, .eds_override = options.eds}),
       leds_(devices.leds),
       // MS, NS and LNK from one model; the power-up test runs from here.
       indicators_({devices.port, proxy_, addressing_, &eip_card_.connections()}, leds_,
@@ -43,7 +39,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       // whose ports open, c554 the web server's): the Modbus service first, the rest in Start().
       publisher_(proxy_, modbus_server_, {}, netif_, kFirmwareVersion, &eip_card_.identity_sink()),
       web_status_({proxy_, publisher_, netif_, leds_, eip_card_.connections()}),
-      web_application_({access_, proxy_, proxy_, proxy_, web_status_, eds_}),
+      web_application_({access_, proxy_, proxy_, proxy_, web_status_, eip_card_.served_eds()}),
       http_server_(web_application_),
       web_service_(http_server_, devices.clock, {.port = 80, .keepalive = options.keepalive}) {
   // The netif starts without an address: the addressing installs one once the configuration is read

@@ -137,7 +137,7 @@ class Card {
   const WebService& web_service() const { return web_service_; }
   const web::HttpServer& http_server() const { return http_server_; }
   const web::AccessControl& access() const { return access_; }
-  const cip::ServedFile& eds() const { return eds_; }
+  const cip::ServedFile& eds() const { return eip_card_.served_eds(); }
 
  private:
   // Binds lwIP's platform functions and runs lwip_init() before any member that uses lwIP is built.
@@ -201,8 +201,6 @@ class Card {
   hal::FramePort& port_;
   hal::NvStore& store_;
   hal::Watchdog* watchdog_;
-  // The EDS served by the File object 0x37 and by GET /eds (card.cc chooses it).
-  const cip::ServedFile eds_;
   LwipStart lwip_;
   CardNetif netif_;
   CardAddressing addressing_;

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The card's EDS from the card itself (docs/file-object.md), over TAP against the host card (c500 = 1).
 Run by tools/netns with --pcap (CARD_IP, HOST_IP, CARD_PCAP); EDS_FILE names the file the card was told to
-serve (--eds): every download must equal it byte for byte (without EDS_FILE: the HTTP body is the reference).
+serve (--eds), or the built EDS of the card's own model (EDS_NAME: the name the card gives it): every
+download must equal it byte for byte (without EDS_FILE: the HTTP body is the reference).
 
 1. HTTP: GET /api/eds without a session is 401; after login it is 200 with application/octet-stream, an
    attachment file name and Content-Length equal to the body's size; curl downloads the same bytes.
@@ -173,7 +174,7 @@ def main():
     if os.environ.get("EDS_FILE"):
         with open(os.environ["EDS_FILE"], "rb") as served:
             same("GET /api/eds against the file served", eds, served.read())
-        same("file name", http_name, os.path.basename(os.environ["EDS_FILE"]))
+        same("file name", http_name, os.environ.get("EDS_NAME", os.path.basename(os.environ["EDS_FILE"])))
     with Client(CARD_IP) as client:
         same("RegisterSession", client.register_session().status, 0)
         name = upload(client, eds)

@@ -115,12 +115,13 @@ grep -q 'running-fwd ready ctrl-from-net ref-from-net at-reference state=4 (enab
   || fail "after io the drive is not stopped and healthy: $("$CTL" "$CARD_CONTROL" status)"
 pass "io: the drive ran to 30 Hz (900 rpm) and was stopped before Forward_Close (stopped, no trip)"
 
-# eds: this branch's card has no File object yet (branch fileobj adds class 0x37): the exact refusal.
-# When it is merged, this step becomes the upload compared byte for byte with the built EDS.
-run_ipe 1 eds "$A" "$KEEP/card.eds"
-expect_err "ipe: eds: Initiate_Upload refused by the card: general status 0x05 (path destination unknown)"
-[ ! -e "$KEEP/card.eds" ] || fail "a refused upload left a file"
-pass "eds: the card without a File object refuses Initiate_Upload with 0x05; no file written"
+# eds: the upload through the File object is the EDS the build wrote for this model, byte for byte.
+built_eds="$EDS_DIR/IPE002Z_VF-MB1.eds"
+[ -s "$built_eds" ] || fail "no built EDS at $built_eds"
+run_ipe 0 eds "$A" "$KEEP/card.eds"
+expect_err "eds: $(stat -c %s "$built_eds") bytes saved to $KEEP/card.eds (checksum ok)"
+cmp "$built_eds" "$KEEP/card.eds" || fail "the uploaded EDS differs from the built $built_eds"
+pass "eds: the File object upload equals the built VF-MB1 EDS ($(stat -c %s "$built_eds") bytes)"
 
 # A changed drive, backed up.
 run_ipe 0 set "$A" dec=3.0 c101=2

@@ -196,6 +196,13 @@ TEST(ControlRequestTest, WhatTheLockCovers) {
   EXPECT_FALSE(IsControlRequest(request(0x10, 0x65, 0x0009, 3)));
   EXPECT_FALSE(IsControlRequest(request(0x10, 0x64, 0x7C00, 3)));  // FC00: a monitor, not a command
   EXPECT_TRUE(IsControlRequest(request(0x10, 0x64, 0x7A51, 3)));   // FA51
+  // 0x0F: instance = row of the parameter table (cmod 2, acc 6, f899 88, fa06 145).
+  EXPECT_TRUE(IsControlRequest(request(0x10, 0x0F, 2, 1)));
+  EXPECT_TRUE(IsControlRequest(request(0x10, 0x0F, 88, 1)));
+  EXPECT_TRUE(IsControlRequest(request(0x10, 0x0F, 145, 1)));
+  EXPECT_FALSE(IsControlRequest(request(0x10, 0x0F, 6, 1)));
+  EXPECT_FALSE(IsControlRequest(request(0x0E, 0x0F, 145, 1)));
+  EXPECT_FALSE(IsControlRequest(request(0x10, 0x0F, 187, 1)));  // no such row
   EXPECT_FALSE(IsControlRequest(request(0x10, 0x28, 1, 6)));
 }
 

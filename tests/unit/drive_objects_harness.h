@@ -1,4 +1,4 @@
-// The CIP drive objects 0x28/0x64/0x65 behind a message router, on the scripted register fake, with
+// The CIP drive objects 0x0F/0x28/0x64/0x65 behind a message router, on the scripted register fake, with
 // the encapsulation server's part of deferred replies played by hand: OnRequestStarted before each
 // pass, the retry once ReadyToRetry, OnRequestFinished after the reply. Shared by the unit tests and
 // the fuzz target of these objects.
@@ -8,11 +8,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "cip/drive/cip_parameter_object.h"
 #include "cip/drive/drive_access_journal.h"
 #include "cip/drive/motor_data_object.h"
 #include "cip/drive/parameter_object.h"
 #include "cip/message_router.h"
 #include "cip/object_model.h"
+#include "cip_fakes.h"
 #include "drive_registers_fake.h"
 
 namespace cip::drive::test {
@@ -30,6 +32,7 @@ class DriveObjectsHarness {
     (void)registry.Register(parameter64.object());
     (void)registry.Register(parameter65.object());
     (void)registry.Register(motor_data.object());
+    (void)registry.Register(parameter0f.object());
   }
 
   // One execution pass of `request` for `requester` (the reply is meaningless while pending).
@@ -63,6 +66,8 @@ class DriveObjectsHarness {
   ParameterObject parameter64{ParameterClass::k64, journal};
   ParameterObject parameter65{ParameterClass::k65, journal};
   MotorDataObject motor_data{journal};
+  cip::test::FakeDeviceInfo device;  // the model the Parameter object 0x0F takes its limits from
+  CipParameterObject parameter0f{journal, device};
   ObjectRegistry registry;
   MessageRouter router{registry};
 };

@@ -5,7 +5,7 @@
 // The firmware builds one CipDevice and then:
 // - binds encapsulation() to lwIP (TCP and UDP 44818, see encapsulation_server.h);
 // - registers further classes in objects() (Connection Manager 0x06, Motor Data 0x28, Control
-//   Supervisor 0x29, AC/DC Drive 0x2A, Parameter 0x64/0x65) and assembly instances in assemblies();
+//   Supervisor 0x29, AC/DC Drive 0x2A, Parameter 0x0F/0x64/0x65) and assembly instances in assemblies();
 // - gives the connection manager to encapsulation().set_connected_handler() and its connection count
 //   to message_router_object().set_connection_counter().
 #pragma once

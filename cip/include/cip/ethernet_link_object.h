@@ -27,13 +27,18 @@
 
 namespace cip {
 
+// Class attribute 1 (also the EDS's [Ethernet Link Class] Revision).
+inline constexpr std::uint16_t kEthernetLinkClassRevision = 3;
+// One instance per port of the card's switch (Port 1, Port 2).
+inline constexpr std::uint32_t kEthernetLinkInstances = 2;
+
 class EthernetLinkObject final : public AttributeHandler {
  public:
   EthernetLinkObject(const DeviceInfoProvider& device, EthernetLinkProvider& links);
 
   CipObject& object() { return object_; }
 
-  std::uint32_t MaxInstance() const override { return 2; }
+  std::uint32_t MaxInstance() const override { return kEthernetLinkInstances; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
   void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
   ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;

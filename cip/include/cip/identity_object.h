@@ -24,6 +24,8 @@
 
 namespace cip {
 
+// Class attribute 1 (also the EDS's [Identity Class] Revision).
+inline constexpr std::uint16_t kIdentityClassRevision = 1;
 inline constexpr std::uint16_t kVendorIdToshiba = 377;
 inline constexpr std::uint16_t kDeviceTypeAcDrive = 2;
 inline constexpr std::uint16_t kProductCodeVfMb1 = 32000;
@@ -32,6 +34,10 @@ inline constexpr std::uint8_t kMajorRevision = 1;
 inline constexpr std::uint8_t kMinorRevision = 8;
 // ListIdentity's state byte: the card has no Identity attribute 8, so it reports "not implemented".
 inline constexpr std::uint8_t kIdentityStateUnknown = 0xFF;
+
+// Product code and name of the card on an inverter model (attributes 3 and 7; the EDS of that model).
+std::uint16_t ProductCodeOf(DriveModel model);
+std::string_view ProductNameOf(DriveModel model);
 
 std::uint32_t SerialNumberFromMac(const MacAddress& mac);
 std::uint16_t EncodeStatusWord(const DeviceStatus& status);

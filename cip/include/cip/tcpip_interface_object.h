@@ -33,6 +33,9 @@
 
 namespace cip {
 
+// Class attribute 1 (also the EDS's [TCP/IP Interface Class] Revision).
+inline constexpr std::uint16_t kTcpIpClassRevision = 1;
+
 inline constexpr std::uint32_t kTcpIpCapabilities = 0x01 | 0x04 | 0x08 | 0x10 | 0x80;
 
 class TcpIpInterfaceObject final : public AttributeHandler {

@@ -10,6 +10,7 @@
 //   0x2A AC/DC Drive         Set of 4 NetRef, 8 SpeedRef
 //   0x64 / 0x65 Parameter    Set of attribute 3 of a control register (drive_link::reg::IsControlRegister:
 //                            FA00-FAFF, cmod, fmod, f207, f899)
+//   0x0F Parameter           Set of attribute 1 of an instance whose row is such a control register
 // A Forward_Open of an exclusive owner from another originator is the Connection Manager's own refusal
 // (0x01 / 0x0106). The owner's originator is an IP address, as for Forward_Close and the O->T data: a PLC
 // may send its messages on other TCP connections and sessions than the one that opened its I/O.
