@@ -107,14 +107,24 @@ void DriveProfileRuntime::ApplyNative(const DriveCommand& command, const OutputE
   WriteDriveCommand();
   // A 100 of 2 words carries no scanner word, and words whose menu targets FA06/FA07 are left out:
   // an empty mask would stop the scanner words another connection (102/105) sends.
-  if (writes.scanner_mask != 0) links_.command.SetCommandWordsMasked(writes.scanner_words, writes.scanner_mask);
+  SendScannerWords(writes);
 }
 
 void DriveProfileRuntime::ApplyScanner(const DriveCommand& command) {
   Step(false);
   WriteDriveCommand();  // an explicit hold just released is not written again
-  const CommandWrites writes = CommandRegisters(command, Context());
-  if (writes.scanner_mask != 0) links_.command.SetCommandWordsMasked(writes.scanner_words, writes.scanner_mask);
+  SendScannerWords(CommandRegisters(command, Context()));
+}
+
+void DriveProfileRuntime::SendScannerWords(const CommandWrites& writes) {
+  if (writes.scanner_mask == 0) return;
+  links_.command.SetCommandWordsMasked(writes.scanner_words, writes.scanner_mask);
+  scanner_words_sent_ = true;
+}
+
+bool DriveProfileRuntime::ScannerOutputOwned() const {
+  return links_.ownership.IsOwned(kNativeOutput) || links_.ownership.IsOwned(kScannerOutput) ||
+         links_.ownership.IsOwned(kToshibaOutput);
 }
 
 bool DriveProfileRuntime::ScannerTargetsDriveCommand() const {
@@ -436,6 +446,13 @@ void DriveProfileRuntime::OnConnectionsChanged() {
     owned_[i] = owned;
     trackers_[i].Reset();
     if (ChannelSlot* slot = SlotOf(kOutputInstances[i]); slot != nullptr) ResetChannel(*slot);
+  }
+  // The scanner words' master is gone (closed or timed out): its words must neither keep FA06/FA07
+  // reserved nor be written again later (a ReleaseDriveCommand writes scanner words on FA06/FA07 at once):
+  // an empty mask takes them out, writing nothing; the next master's words come back in at once.
+  if (scanner_words_sent_ && !ScannerOutputOwned()) {
+    links_.command.SetCommandWordsMasked(drive_link::ScannerWords{}, 0);
+    scanner_words_sent_ = false;
   }
   if (owner_ == Owner::kConnection && !links_.ownership.IsOwned(owner_point_)) Release();
   ComputeFeedback();

@@ -36,6 +36,9 @@ CIP_RUN = [(0x29, 1, 5, b"\x01"), (0x2A, 1, 4, b"\x01"), (0x2A, 1, 8, u16(900)),
 CIP_STOP = [(0x29, 1, 3, b"\x00")]
 PARAM_RUN = [(0x65, 0xFA07, 3, u16(SPEED_30HZ)), (0x65, 0xFA06, 3, u16(RUN_WORD))]
 PARAM_STOP = [(0x65, 0xFA06, 3, u16(STOP_WORD))]
+# 0x64: F-numbers at number - 0x8000 (FA06 -> 7A06h, FA07 -> 7A07h, docs/drive-objects.md).
+PARAM64_RUN = [(0x64, 0x7A07, 3, u16(SPEED_30HZ)), (0x64, 0x7A06, 3, u16(RUN_WORD))]
+PARAM64_STOP = [(0x64, 0x7A06, 3, u16(STOP_WORD))]
 
 
 def answer_codes(replies):
@@ -108,21 +111,33 @@ WEB_RUN = [("FA07", SPEED_30HZ), ("FA06", RUN_WORD)]
 WEB_STOP = [("FA06", STOP_WORD)]
 
 
-def class1(ctx, instance, data):
-    """An exclusive owner of `instance` (-> 71) in run mode: the answer is the Forward_Open's status."""
+def class1(ctx, consumed, produced, produced_size, data):
+    """An exclusive owner of `consumed` (-> `produced`, `produced_size` bytes) in run mode: the answer is the
+    Forward_Open's status."""
     ep = ctx.endpoint
     triad = Triad(0x0D00 + ctx.serial())
     t_o_id = 0x1D000000 + triad.serial
-    request = forward_open(triad, io_path(instance, 71), RPI, net_params(len(H(data)) + 6), RPI, net_params(6),
+    path = io_path(consumed, produced)
+    request = forward_open(triad, path, RPI, net_params(len(H(data)) + 6), RPI, net_params(produced_size + 2),
                            t_o_id=t_o_id, multiplier=2)
     mr, raw, _ = open_connection(ctx.client, request)
     if mr.general != 0:
         return f"{mr.general:02X} ext " + " ".join(f"{w:04X}" for w in mr.extended)
-    ctx.extra.append((triad, instance, ep.add(IoConnection(decode_open_success(mr.data)["o_t_id"], t_o_id, RPI,
-                                                             H(data), name=f"row {instance}"))))
+    ctx.extra.append((triad, path, ep.add(IoConnection(decode_open_success(mr.data)["o_t_id"], t_o_id, RPI,
+                                                         H(data), name=f"row {consumed}"))))
     return "00"
 
 
+def basic_speed(ctx):
+    """20 carries no NetCtrl/NetRef: FA06's priority bits come from 0x29 attribute 5 and 0x2A attribute 4,
+    which every state leaves at 1 (the owner 21's `60`/`61` and the Sets before; with the factory cmod = 1
+    the drive would ignore 20's run bit otherwise). Checked, so that the row's effect does not depend on
+    history nobody sees."""
+    for class_id, attribute in ((0x29, 5), (0x2A, 4)):
+        reply = ctx.client.cip(mr_request(GET_ATTRIBUTE_SINGLE, epath(class_id, 1, attribute)))
+        if reply.general != 0 or reply.data != b"\x01":
+            fail(f"20 row: {class_id:#x} attribute {attribute} is {reply}, not 1")
+    return class1(ctx, 20, 70, 4, "01 00 84 03")
 def H(text):
     return bytes.fromhex(text)
 
@@ -133,23 +148,38 @@ PATHS = {
     "unconnected 0x29 stop": ("Set Run1=0", lambda c: unconnected(c, CIP_STOP)),
     "unconnected 0x65 run": ("Set FA07=0BB8h, FA06=C400h", lambda c: unconnected(c, PARAM_RUN)),
     "unconnected 0x65 stop": ("Set FA06=8000h", lambda c: unconnected(c, PARAM_STOP)),
+    "unconnected 0x64 run": ("Set 7A07h (FA07)=0BB8h, 7A06h (FA06)=C400h", lambda c: unconnected(c, PARAM64_RUN)),
+    "unconnected 0x64 stop": ("Set 7A06h (FA06)=8000h", lambda c: unconnected(c, PARAM64_STOP)),
     "class 3 0x29/0x2A run": ("Forward_Open, the 4 Sets, Forward_Close", lambda c: class3(c, CIP_RUN)),
     "web API run": ("POST FA07=0BB8h, FA06=C400h", lambda c: c.web.write(WEB_RUN)),
     "web API stop": ("POST FA06=8000h", lambda c: c.web.write(WEB_STOP)),
-    "class 1 21/71 run": ("Forward_Open, O->T 61 00 84 03 run mode", lambda c: class1(c, 21, "61 00 84 03")),
-    "class 1 100/150 run": ("Forward_Open, O->T 00 C4 B8 0B run mode", lambda c: class1(c, 100, "00 C4 B8 0B")),
+    "class 1 21/71 run": ("Forward_Open, O->T 61 00 84 03 run mode", lambda c: class1(c, 21, 71, 4, "61 00 84 03")),
+    "class 1 20/70 run": ("Forward_Open, O->T 01 00 84 03 run mode (NetCtrl = NetRef = 1)", basic_speed),
+    "class 1 100/150 run": ("Forward_Open, O->T 00 C4 B8 0B run mode",
+                            lambda c: class1(c, 100, 150, 4, "00 C4 B8 0B")),
+    # c001 = 1 (FA06), c002 = 3 (FA07), c003-c006 = 0: the factory menus, so 102/105 command the drive.
+    "class 1 102/152 run": ("Forward_Open, O->T 00 C4 B8 0B + 8 x 00 run mode (c001 = FA06, c002 = FA07)",
+                            lambda c: class1(c, 102, 152, 12, "00 C4 B8 0B" + " 00" * 8)),
+    "class 1 105/155 run": ("Forward_Open, O->T 00 00 03 00 00 00 (read cmod) 00 C4 B8 0B + 8 x 00 run mode",
+                            lambda c: class1(c, 105, 155, 18, "00 00 03 00 00 00 00 C4 B8 0B" + " 00" * 8)),
 }
 
 # ---- the states ---------------------------------------------------------------------------------------------
 
-STATES = ["no loss", "c100 delay running", "c101=0 in force", "c101=1 (continue)", "c101=2 in force",
-          "c101=3 in force", "c101=4 in force (err8)", "c101=5 in force", "owner idle", "another owner runs"]
+STATES = ["no loss", "c100 delay running", "c101=0 in force", "c101=0 in force (timeout)", "c101=1 (continue)",
+          "c101=2 in force", "c101=2 in force (timeout)", "c101=3 in force", "c101=4 in force (err8)",
+          "c101=5 in force", "owner idle", "another owner runs"]
+# The loss cause is the owner's Forward_Close, or its timeout (it stops sending O->T: RPI x 4 x 2^2 = 320 ms)
+# in the states marked so; the proxy acts the same for both (docs/drive-control.md). "c101=2 in force
+# (timeout)" follows its twin with no f899 between: its explicit FA06 writes come after the twin's 102/105
+# connections closed (their scanner words must no longer reserve FA06/FA07).
+TIMEOUT_STATES = {"c101=0 in force (timeout)", "c101=2 in force (timeout)"}
 
 # The rule (docs/drive-control.md): what each path answers in each state, and what the drive shows after.
 # Effects: "runs" (FA06 run bit, FA07 0BB8h, 30 Hz reached), "stops" (FA06 = 8000h or the run bits cleared,
 # 0 Hz, held past two refreshes of the action), "none" (FA06, FA07, trip unchanged).
 HELD = {"c100 delay running", "c101=0 in force", "c101=2 in force", "c101=3 in force", "c101=4 in force (err8)",
-        "c101=5 in force"}
+        "c101=5 in force"} | TIMEOUT_STATES
 OWNED = {"owner idle", "another owner runs"}
 
 
@@ -186,9 +216,16 @@ def expect(path, state):
     return "00", "stops"
 
 
+# The other class 1 command outputs only where their answer can differ from 21's: no loss (taken), one loss
+# state (the open restores the network), and while the owner 21 is open, idle or running (from our own
+# address: one owner of the drive command, 0x0106).
+CLASS1_OTHERS = ("class 1 20", "class 1 100", "class 1 102", "class 1 105")
+# 0x64 reaches FA06/FA07 by the same register write as 0x65 (only the instance numbering differs): no loss,
+# the c101=2 loss by both causes, and another owner running.
+PARAM64_STATES = {"no loss", "c101=2 in force", "c101=2 in force (timeout)", "another owner runs"}
 ROWS = [(path, state) for state in STATES for path in PATHS
-        if not (path.startswith("class 1 100") and state not in {"no loss", "c101=2 in force"} | OWNED)]
-# 100 while the owner (21, from our own address) is open: one owner of the drive command, 0x0106.
+        if not (path.startswith(CLASS1_OTHERS) and state not in {"no loss", "c101=2 in force"} | OWNED)
+        and not ("0x64" in path and state not in PARAM64_STATES)]
 
 
 # ---- running a row ------------------------------------------------------------------------------------------
@@ -249,9 +286,9 @@ def start_afresh(ctx):
 
 
 def close_all(ctx):
-    for triad, instance, conn in ctx.extra + ([ctx.owner] if ctx.owner else []):
+    for triad, path, conn in ctx.extra + ([ctx.owner] if ctx.owner else []):
         ctx.endpoint.stop_sending(conn)
-        open_connection(ctx.client, forward_close(triad, io_path(instance, 71)))
+        open_connection(ctx.client, forward_close(triad, path))
         ctx.endpoint.remove(conn)
     ctx.extra, ctx.owner = [], None
 
@@ -265,7 +302,7 @@ def open_owner(ctx, data="61 00 08 07"):
     if mr.general != 0:
         fail(f"owner Forward_Open refused: {hexs(raw)}")
     conn = ctx.endpoint.add(IoConnection(decode_open_success(mr.data)["o_t_id"], t_o_id, RPI, H(data), name="owner"))
-    ctx.owner = (triad, 21, conn)
+    ctx.owner = (triad, io_path(21, 71), conn)
     if data == "61 00 08 07":
         wait_until("owner runs the drive at 60 Hz", lambda: inverter()["hz"] == 60.0, 3.0)
     else:
@@ -277,7 +314,7 @@ def enter(ctx, state):
     """Puts the card and the inverter into `state` from anything: f899 = 1 when c100-c102 change or the
     drive tripped (err8 stays until f899), else start_afresh."""
     close_all(ctx)
-    c101 = {"c101=0 in force": 0, "c101=1 (continue)": 1, "c101=3 in force": 3, "c101=4 in force (err8)": 4,
+    c101 = {"c101=0 in force": 0, "c101=0 in force (timeout)": 0, "c101=1 (continue)": 1, "c101=3 in force": 3, "c101=4 in force (err8)": 4,
             "c101=5 in force": 5}.get(state, 2)
     wanted = (50 if state == "c100 delay running" else 0, c101, 3 if c101 == 5 else 0)
     if wanted != ctx.loaded or inverter()["trip"] != 0:
@@ -292,10 +329,17 @@ def enter(ctx, state):
         return
     if state == "owner idle":
         ctx.endpoint.set(ctx.owner[2], run=False)
-    else:
-        triad, instance, conn = ctx.owner
+    elif state in TIMEOUT_STATES:
+        triad, path, conn = ctx.owner
+        timeouts = stat("cip.loss_timeouts")
         ctx.endpoint.stop_sending(conn)
-        open_connection(ctx.client, forward_close(triad, io_path(instance, 71)))
+        wait_until("owner timed out", lambda: stat("cip.loss_timeouts") > timeouts and stat("cip.lost") == 1, 2.0)
+        ctx.endpoint.remove(conn)
+        ctx.owner = None
+    else:
+        triad, path, conn = ctx.owner
+        ctx.endpoint.stop_sending(conn)
+        open_connection(ctx.client, forward_close(triad, path))
         ctx.endpoint.remove(conn)
         ctx.owner = None
     if state == "c100 delay running":
@@ -357,7 +401,9 @@ def write_markdown(results):
              "Answer: the CIP general status of each request in order (hex), the HTTP status of each write, or",
              "the class 1 Forward_Open's status. Effect in the inverter: runs = FA06 run bit, FA07 = 0BB8h, 30 Hz;",
              "stops = run bit clear and 0 Hz, still after two refreshes of the loss action; none = FA06, FA07 and",
-             "the trip code unchanged; set, no run = FA06 C000h, FA07 0BB8h, 0 Hz, err8 (27) stays. c536 stays 0 in every row (a CIP loss has no c536 code).", "",
+             "the trip code unchanged; set, no run = FA06 C000h, FA07 0BB8h, 0 Hz, err8 (27) stays. c536 stays 0 in every row (a CIP loss has no c536 code).",
+             "The loss is the owner 21's Forward_Close, or its timeout (it stops sending O->T) where the state says",
+             "\"(timeout)\"; 0x64 instances 7A06h/7A07h are FA06/FA07.", "",
              "| State | Path | Request | Answer | Effect | Loss action after |",
              "| --- | --- | --- | --- | --- | --- |"]
     for path, state, answer, got_effect, c536, loss in results:

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The command/effect matrix of issue 21 (docs/drive-control.md). DRIVE_MATRIX=eip (default): every control
-# path of the EtherNet/IP card (unconnected and class 3 Sets on 0x29/0x2A and 0x65 FA06/FA07, class 1 21
-# and 100, the web API) in every loss state, the table docs/drive-control-matrix.md. DRIVE_MATRIX=modbus:
+# path of the EtherNet/IP card (unconnected and class 3 Sets on 0x29/0x2A and 0x64/0x65 FA06/FA07, class 1
+# 20, 21, 100, 102 and 105, the web API) in every loss state (the loss by Forward_Close or by timeout), the
+# table docs/drive-control-matrix.md. DRIVE_MATRIX=modbus:
 # the Modbus card (unit 0 FC06/FC16 of FA06/FA07, IO scanning FC23 on unit 255) in every state of IO
 # scanning's loss, the table docs/drive-control-matrix-modbus.md. The generated table must equal the
 # committed one (DRIVE_MATRIX_UPDATE=1 rewrites it).

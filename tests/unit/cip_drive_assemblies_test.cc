@@ -458,6 +458,27 @@ TEST_F(DriveAssembliesTest, TheControllingConnectionGoingAwayReleasesWithoutWrit
   EXPECT_EQ(card_.channel.commands.back(), (DriveCommandWords{0x2000, 0x0000}));
 }
 
+// A closed 102's words must not keep FA06/FA07 reserved for nobody, nor come back when another owner
+// gives the drive command back (found by integration.drive_control_matrix, docs/drive-control.md).
+TEST_F(DriveAssembliesTest, TheScannerConnectionGoingAwayTakesItsWordsOut) {
+  card_.ownership.owned = {102};
+  card_.assemblies.OnConnectionsChanged();
+  Consume(102, Hex("00 C4 B8 0B 00 00 00 00 00 00 00 00"));
+  ASSERT_EQ(card_.channel.masked.size(), 1u);
+  EXPECT_EQ(card_.channel.masked[0], (FakeDriveCommandChannel::MaskedWords{{0xC400, 0x0BB8, 0, 0, 0, 0}, 0x3F}));
+  card_.ownership.owned = {102, 21};  // another point opened: the scanner's master is still there
+  card_.assemblies.OnConnectionsChanged();
+  EXPECT_EQ(card_.channel.masked.size(), 1u);
+  card_.ownership.owned = {21};  // 102 closed or timed out
+  card_.assemblies.OnConnectionsChanged();
+  ASSERT_EQ(card_.channel.masked.size(), 2u);
+  EXPECT_EQ(card_.channel.masked[1], (FakeDriveCommandChannel::MaskedWords{{0, 0, 0, 0, 0, 0}, 0x00}));
+  card_.ownership.owned.clear();  // once only, and not for a connection that sent no scanner words
+  card_.assemblies.OnConnectionsChanged();
+  EXPECT_EQ(card_.channel.masked.size(), 2u);
+  EXPECT_EQ(card_.channel.releases, 0);
+}
+
 TEST_F(DriveAssembliesTest, TheCommandIsTakenAgainAfterTheDriveLinkGaveItBack) {
   card_.Drive(kStandby);
   Consume(21, Hex("61 00 08 07"));

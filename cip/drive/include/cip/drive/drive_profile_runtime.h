@@ -187,6 +187,8 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
   void ApplyCipSpeed(const DriveCommand& command, const OutputEvents& events);
   void ApplyNative(const DriveCommand& command, const OutputEvents& events);
   void ApplyScanner(const DriveCommand& command);
+  void SendScannerWords(const CommandWrites& writes);
+  bool ScannerOutputOwned() const;
   void ResetChannel(ChannelSlot& slot);
   void StartDueAccesses();
   void ComputeFeedback();
@@ -214,6 +216,9 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
   drive_link::DriveCommandWords native_words_;   // kNative: FA06/FA07 of the last 100 packet
   drive_link::DriveCommandWords written_;
   bool written_valid_ = false;
+  // A connection's scanner words (100 of more than 2 words, 102, 105) are in the drive link: given back
+  // when no such connection is open any more (OnConnectionsChanged).
+  bool scanner_words_sent_ = false;
 
   // Per output instance (kOutputInstances order): edges, and whether a connection owned it last time.
   std::array<OutputEdgeTracker, kOutputInstances.size()> trackers_{};
