@@ -138,7 +138,7 @@ def rows_path():
 def rows_class_instance_attribute():
     c, i, a = "class unknown (0x05)", "instance unknown (0x16)", "attribute unknown (0x14)"
     out = []
-    for class_id in (0x00, 0x03, 0x05, 0x07, 0x37, 0x48, 0x70, 0xFF, 0x0300, 0xFFFF):
+    for class_id in (0x00, 0x03, 0x05, 0x07, 0x38, 0x48, 0x70, 0xFF, 0x0300, 0xFFFF):
         out.append((c, f"class 0x{class_id:02X}", get(class_id, 1, 1), status(GET, 0x05)))
     out.append((c, "Set on class 0x70 (the class is judged before the service)", set_(0x70, 1, 1, "00"),
                 status(SET, 0x05)))
@@ -153,6 +153,9 @@ def rows_class_instance_attribute():
     out += [
         (i, "Set on Identity 2 (the instance is judged before the service)", set_(IDENTITY, 2, 1, "00"),
          status(SET, 0x16)),
+        (i, "File 1 (the EDS is instance 0xC8, the only one)", get(0x37, 1, 1), status(GET, 0x16)),
+        (i, "Parameter 0x0F 187 (the parameter table has 186 rows)", get(0x0F, 187, 1),
+         status(GET, 0x16)),
         (i, "parameter 0x65 instance 000A (A-F endings are no registers)", get(PARAM65, 0x000A, 3), status(GET, 0x16)),
         (i, "parameter 0x65 instance 0001 (the inverter has none)", get(PARAM65, 0x0001, 3), status(GET, 0x16)),
         (i, "parameter 0x64 instance 0x1000 (outside its windows)", get(PARAM64, 0x1000, 3), status(GET, 0x16)),

@@ -219,6 +219,11 @@ def enter(ctx, config, state):
     wanted = CONFIGS[config] + (50 if state == "c100 delay running" else 0, c101)
     if wanted != ctx.loaded or inverter()["trip"] != 0:
         reload_config(ctx, wanted)
+        if config == OWNS:
+            # The reset cleared FA06/FA07 in the inverter; the scanner's words come back with its next
+            # exchange after the load. Before that, a row's "before" would see them arrive as its effect.
+            wait_until("the scanner's stop words in the inverter after the reload",
+                       lambda: (inverter()["fa06"], inverter()["fa07"]) == (STOP_WORD, SPEED_30HZ), 2.0)
     if state == "no loss":
         return
     # The drive runs at 60 Hz: by the scanner's words, or by unit 0 when the scanner has none.
