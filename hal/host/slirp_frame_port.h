@@ -22,7 +22,7 @@
 //     port coexist, so the card's forward holds 127.0.0.2:2222 and the scanner binds 127.0.0.1:2222. The
 //     scanner must bind the specific address 127.0.0.1, not 0.0.0.0: a wildcard bind of 2222 conflicts
 //     with the forward (unless both sockets set SO_REUSEADDR).
-//   - Card -> host (verified against libslirp 4.7 by tests/unit/slirp_frame_port_test.cc): slirp
+//   - Card -> host (verified against libslirp 4.7 by hal/host/test/slirp_frame_port_test.cc): slirp
 //     rewrites a datagram the card sends to 10.0.2.2:P (any virtual address except the DNS proxy) to
 //     127.0.0.1:P. If the card sends from a forwarded guest port (UDP 2222), slirp sends it through that
 //     forward's own host socket, so the scanner sees T->O data coming from 127.0.0.2:2222; from any other

@@ -1,6 +1,6 @@
 // libFuzzer target for the drive profile at run time (cip/drive): DriveAssemblies as the Connection
 // Manager's IoApplication and as the assemblies' explicit write handler, the runtime behind them and the
-// Control Supervisor / AC/DC Drive objects, on the fakes of tests/unit/drive_channel_fake.h.
+// Control Supervisor / AC/DC Drive objects, on the fakes of cip/test/drive_channel_fake.h.
 //
 // Input: a sequence of records, each an operation byte and its operands read from the input (0 once it is
 // used up):

@@ -1,5 +1,5 @@
 // libFuzzer target for the CIP drive objects 0x28/0x64/0x65 and their access journal (cip/drive), behind
-// the message router, with the register fake of tests/unit/drive_registers_fake.h completing accesses
+// the message router, with the register fake of drive_link/test/drive_registers_fake.h completing accesses
 // from the input.
 //
 // Input: byte 0 = n, the number of requests (1-3, n % 3 + 1); then per request one length byte and that

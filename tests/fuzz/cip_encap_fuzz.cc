@@ -1,5 +1,5 @@
 // libFuzzer target for the EtherNet/IP encapsulation layer and the Common Packet Format (cip/), with the
-// whole CipDevice behind it (fakes of tests/unit/cip_fakes.h).
+// whole CipDevice behind it (fakes of cip/test/cip_fakes.h).
 //
 // The first input byte picks what is exercised:
 //   0 TCP: the rest is a stream cut into chunks; each chunk is a length byte and that many bytes. A

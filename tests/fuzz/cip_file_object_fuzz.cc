@@ -1,6 +1,6 @@
 // libFuzzer target for the File object 0x37 (cip/file_object.h): its request parsing (Initiate_Upload,
 // Upload_Transfer, attribute reads) behind the message router of a CipDevice on the fakes of
-// tests/unit/cip_fakes.h, serving a ByteSpanFile.
+// cip/test/cip_fakes.h, serving a ByteSpanFile.
 //
 // Input: byte 0 = the file's size / 3 (0..765 bytes of a known pattern); then requests, each one byte of
 // length, one byte of origin (bit 0: session 1 or 2; bits 1-7: seconds to advance the clock) and that

@@ -1,8 +1,8 @@
 // libFuzzer target for the connection manager (cip/forward_open, cip/io_connection,
 // cip/connection_manager*): Forward_Open / Large_Forward_Open / Forward_Close decoding and validation,
 // connection paths, class 1 datagrams on UDP 2222, production and timeouts, class 3 requests. A
-// CipDevice on the fakes of tests/unit/cip_fakes.h with the connection manager attached and the fake
-// I/O application of tests/unit/cip_connection_fakes.h; an exclusive owner (O->T ID 0x11223344) and a
+// CipDevice on the fakes of cip/test/cip_fakes.h with the connection manager attached and the fake
+// I/O application of cip/test/cip_connection_fakes.h; an exclusive owner (O->T ID 0x11223344) and a
 // class 3 connection (O->T ID 0x12233445) are open before the input runs.
 //
 // Input: the whole input goes through every decoder once; then it is read as records

@@ -1,5 +1,5 @@
 // libFuzzer target for the message router and EPATH decoding (cip/), with the standard objects of a
-// CipDevice on the fakes of tests/unit/cip_fakes.h and a test assembly registered.
+// CipDevice on the fakes of cip/test/cip_fakes.h and a test assembly registered.
 //
 // Input: byte 0 sets the reply buffer size (8 + byte 0 * 4: every error reply fits, the overflow paths of
 // longer replies are reached); the rest is

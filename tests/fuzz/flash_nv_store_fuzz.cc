@@ -1,5 +1,5 @@
 // libFuzzer target for hal::FlashNvStore (hal/flash_nv_store.h) on the fake flash of the unit tests
-// (tests/unit/fake_flash.h): it mounts arbitrary flash contents, then runs a script of changes, reads,
+// (hal/test/fake_flash.h): it mounts arbitrary flash contents, then runs a script of changes, reads,
 // restarts and power cuts from the input.
 //
 // Input: [geometry] [contents length u16 LE] [contents] [script...]

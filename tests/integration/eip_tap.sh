@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # EtherNet/IP over TAP in a namespace (tools/netns), against our originator (eip_originator.py) and an
 # independent one (st-ethernet-ip, eip_browse.js). Expected bytes and codes are docs/ethernetip.md's and
-# the unit tests' (tests/unit/cip_*_test.cc). docs/eip-tests.md describes every check.
+# the unit tests' (cip/test/cip_*_test.cc). docs/eip-tests.md describes every check.
 #
 # Card started with c500=1 (integration.eip_tap, --pcap):
 #   walk      every object of §4 the core implements, exact bytes; settable attributes and their effect

@@ -1,6 +1,6 @@
 // Flash memory as a NOR part presents it: the facade under the card's non-volatile store
 // (hal/flash_nv_store.h). A board backs it with its flash controller; tests with a fake
-// (tests/unit/fake_flash.h) that enforces the same rules and can cut power at any byte.
+// (hal/test/fake_flash.h) that enforces the same rules and can cut power at any byte.
 //
 // Contract (the rules of real NOR flash, which the store above must respect):
 // - The area is SectorCount() sectors of SectorSize() bytes, offsets 0 .. Size() - 1.

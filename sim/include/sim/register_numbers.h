@@ -1,6 +1,6 @@
 // Communication numbers the simulated inverter's behaviour model acts on. Every one must be a row of
 // registers.csv: InverterModel aborts on a missing one the first time it looks it up, and the unit tests
-// (tests/unit/inverter_*_test.cc) reach every one. This header only names them.
+// (sim/test/inverter_*_test.cc) reach every one. This header only names them.
 //
 // Numbers the card acts on too are defined once, in drive_link/drive_registers.h, and only brought in
 // here; the rest are the simulator's own.

@@ -14,6 +14,7 @@
 #include "cip/tcpip_interface_object.h"
 #include "fake_frame_port.h"
 #include "lwip_fixture.h"
+#include "memory_nv_store.h"
 #include "parameter_writer.h"
 #include "register_proxy_fixture.h"
 
@@ -23,27 +24,7 @@ namespace {
 using drive_link::test::kMilli;
 using drive_link::test::kSecond;
 
-class MemoryNvStore final : public hal::NvStore {
- public:
-  base::Result<std::size_t> Read(hal::NvRecordId id, std::span<std::uint8_t> out) override {
-    const auto it = records.find(id);
-    if (it == records.end()) return base::NotFound();
-    if (it->second.size() > out.size()) return base::OutOfRange();
-    std::copy(it->second.begin(), it->second.end(), out.begin());
-    return it->second.size();
-  }
-  base::Status Write(hal::NvRecordId id, std::span<const std::uint8_t> data) override {
-    ++writes;
-    records[id].assign(data.begin(), data.end());
-    return base::OkStatus();
-  }
-  base::Status Erase(hal::NvRecordId id) override {
-    records.erase(id);
-    return base::OkStatus();
-  }
-  std::map<hal::NvRecordId, std::vector<std::uint8_t>> records;
-  int writes = 0;
-};
+using hal::test::MemoryNvStore;
 
 constexpr hal::MacAddress kMac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};
 

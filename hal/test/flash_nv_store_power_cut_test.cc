@@ -1,7 +1,7 @@
 // Power loss at every step of every kind of change to a hal::FlashNvStore (docs/robustness.md "Power
 // loss"): a record write, a tombstone, the first write on a blank part, a write and an erase that
 // compact, and long runs of changes with repeated compactions. A step is each byte programmed and each
-// sector erase (tests/unit/fake_flash.h); the cut leaves the unit or sector being written in one of the
+// sector erase (hal/test/fake_flash.h); the cut leaves the unit or sector being written in one of the
 // mixes hal/flash.h allows (old bits, the new bits partly applied, a seeded random mix, all new), on
 // parts with program units of 1 to 32 bytes and 2 or 3 sectors, and with torn units readable or
 // answering ECC errors.

@@ -1,5 +1,5 @@
 // firmware::EipService on lwIP: TCP and UDP clients written on lwIP's raw API talk to a CipDevice on
-// fakes (tests/unit/cip_fakes.h) through the lwIP binding, over two netifs wired back to back
+// fakes (cip/test/cip_fakes.h) through the lwIP binding, over two netifs wired back to back
 // (lwip_tcp_pair.h). Exact bytes; the protocol rules themselves are the core's tests.
 #include "eip_service.h"
 
