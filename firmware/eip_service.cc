@@ -23,6 +23,8 @@ cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
 
 }  // namespace
 
+EipService::~EipService() { Stop(); }
+
 base::Status EipService::Configure(const drive_link::CardConfig& config) {
   if (config.protocol == drive_link::Protocol::kEtherNetIp) return Start();
   Stop();

@@ -71,7 +71,7 @@ class EipService final : public TcpService<EipService, EipConnection, cip::kMaxT
  public:
   EipService(cip::EncapsulationServer& server, const hal::Clock& clock, const EipOptions& options = {})
       : TcpService(options.port, options.keepalive), server_(server), clock_(clock), udp_port_(options.port) {}
-  ~EipService() override { Stop(); }
+  ~EipService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c500 = 1) or closes (c500 = 0) the ports.
   base::Status Configure(const drive_link::CardConfig& config) override;

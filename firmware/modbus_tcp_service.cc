@@ -29,6 +29,8 @@ modbus::Ipv4Address PeerAddress(const tcp_pcb* pcb) {
 
 }  // namespace
 
+ModbusTcpService::~ModbusTcpService() { Stop(); }
+
 base::Status ModbusTcpService::Configure(const drive_link::CardConfig& config) {
   core_.Configure(config);
   if (config.protocol == drive_link::Protocol::kModbusTcp) return Start();

@@ -57,7 +57,7 @@ class ModbusTcpService final : public StreamTcpService<ModbusTcpService, modbus:
 
   ModbusTcpService(modbus::Server& server, const hal::Clock& clock, const ModbusTcpOptions& options = {})
       : StreamTcpService(server, clock, options.port, options.keepalive) {}
-  ~ModbusTcpService() override { Stop(); }
+  ~ModbusTcpService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Hands the configuration to the server and opens (c500 = 0) or closes (c500 = 1) the port.
   base::Status Configure(const drive_link::CardConfig& config) override;

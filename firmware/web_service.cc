@@ -15,6 +15,8 @@ static_assert(web::kHttpReceiveSlack >= TCP_WND / 2, "the receive buffer needs h
 
 }  // namespace
 
+WebService::~WebService() { Stop(); }
+
 base::Status WebService::Configure(const drive_link::CardConfig& config) {
   if (config.web_server) return Start();
   Stop();

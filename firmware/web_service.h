@@ -49,7 +49,7 @@ class WebService final : public StreamTcpService<WebService, web::HttpServer, we
  public:
   WebService(web::HttpServer& server, const hal::Clock& clock, const WebServiceOptions& options = {})
       : StreamTcpService(server, clock, options.port, options.keepalive) {}
-  ~WebService() override { Stop(); }
+  ~WebService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c554 = 1) or closes (c554 = 0) the port.
   base::Status Configure(const drive_link::CardConfig& config) override;
