@@ -17,16 +17,7 @@ constexpr std::array<std::uint8_t, 4> kInstanceServices = {kServiceGetAttributeS
 constexpr ClassSpec kConnectionManagerClass = {
     kClassConnectionManager, 1, kClassAttributes, kOptionalAttributes, {}, 7, 8, kClassServices, kInstanceServices,
 };
-constexpr std::array<AttributeSpec, 8> kAttributes = {{
-    {1, Access::kGet, true},
-    {2, Access::kGet, true},
-    {3, Access::kGet, true},
-    {4, Access::kGet, true},
-    {5, Access::kGet, true},
-    {6, Access::kGet, true},
-    {7, Access::kGet, true},
-    {8, Access::kGet, true},
-}};
+constexpr std::array<AttributeSpec, 8> kAttributes = GettableAttributes<8>();
 
 constexpr std::uint8_t kMaxTimeoutMultiplier = 7;
 constexpr std::uint16_t kSequenceCountSize = 2;

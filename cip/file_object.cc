@@ -15,19 +15,7 @@ constexpr std::array<std::uint8_t, 4> kInstanceServices = {kServiceGetAttributes
 constexpr ClassSpec kFileClass = {
     kClassFile, 3, kClassAttributes, {}, {}, 32, 11, kClassServices, kInstanceServices,
 };
-constexpr std::array<AttributeSpec, 11> kAttributes = {{
-    {1, Access::kGet, true},
-    {2, Access::kGet, true},
-    {3, Access::kGet, true},
-    {4, Access::kGet, true},
-    {5, Access::kGet, true},
-    {6, Access::kGet, true},
-    {7, Access::kGet, true},
-    {8, Access::kGet, true},
-    {9, Access::kGet, true},
-    {10, Access::kGet, true},
-    {11, Access::kGet, true},
-}};
+constexpr std::array<AttributeSpec, 11> kAttributes = GettableAttributes<11>();
 
 constexpr std::string_view kInstanceName = "EDS and Icon Files";
 constexpr std::uint16_t kInstanceFormatVersion = 1;

@@ -13,15 +13,7 @@ constexpr std::array<std::uint8_t, 3> kInstanceServices = {kServiceGetAttributes
 constexpr ClassSpec kIdentityClass = {
     kClassIdentity, kIdentityClassRevision, kClassAttributes, {}, {}, 7, 7, kClassServices, kInstanceServices,
 };
-constexpr std::array<AttributeSpec, 7> kAttributes = {{
-    {1, Access::kGet, true},
-    {2, Access::kGet, true},
-    {3, Access::kGet, true},
-    {4, Access::kGet, true},
-    {5, Access::kGet, true},
-    {6, Access::kGet, true},
-    {7, Access::kGet, true},
-}};
+constexpr std::array<AttributeSpec, 7> kAttributes = GettableAttributes<7>();
 
 constexpr std::uint8_t kResetRestart = 0;
 constexpr std::uint8_t kResetFactoryDefaults = 1;

@@ -23,6 +23,8 @@ cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
 
 }  // namespace
 
+EipService::~EipService() { Stop(); }
+
 base::Status EipService::Configure(const drive_link::CardConfig& config) {
   if (config.protocol == drive_link::Protocol::kEtherNetIp) return Start();
   Stop();
@@ -30,29 +32,25 @@ base::Status EipService::Configure(const drive_link::CardConfig& config) {
 }
 
 base::Status EipService::Start() {
-  if (listener_ != nullptr) return base::OkStatus();
+  if (listening()) return base::OkStatus();
   udp_pcb* udp = udp_new_ip_type(IPADDR_TYPE_V4);
   if (udp == nullptr) return base::ResourceExhausted();
-  if (udp_bind(udp, IP4_ADDR_ANY, options_.port) != ERR_OK) {
+  if (udp_bind(udp, IP4_ADDR_ANY, udp_port_) != ERR_OK) {
     udp_remove(udp);
     return base::FailedPrecondition();
   }
-  const base::Result<tcp_pcb*> listener = OpenTcpListener(options_.port, this, &EipService::OnAccept);
-  if (!listener.ok()) {
+  const base::Status tcp = TcpService::Start();
+  if (!tcp.ok()) {
     udp_remove(udp);
-    return listener.status();
+    return tcp;
   }
-  listener_ = *listener;
   udp_ = udp;
   udp_recv(udp_, &EipService::OnUdp, this);
   return base::OkStatus();
 }
 
 void EipService::Stop() {
-  for (Connection& connection : connections_) {
-    if (connection.pcb != nullptr) Abort(connection);
-  }
-  CloseTcpListener(listener_);
+  TcpService::Stop();
   if (udp_ != nullptr) {
     udp_remove(udp_);
     udp_ = nullptr;
@@ -64,116 +62,62 @@ void EipService::Poll(hal::Micros now) {
   while (server_.TakeDueDatagram(now, due)) SendDatagram(due.to, due.bytes);
   cip::TcpConnectionId expired;
   while (server_.TakeExpiredConnection(now, expired)) {
-    if (Connection* connection = FindConnection(expired)) {
-      ++counters_.closed_by_card;
-      static_cast<void>(Close(*connection));
+    if (Slot* connection = FindConnection(expired)) {
+      static_cast<void>(CloseByCard(*connection));
     } else {
       server_.CloseTcpConnection(expired);
     }
   }
   static_cast<void>(WriteHeldReply());
-  for (Connection& connection : connections_) {
+  for (Slot& connection : slots()) {
     if (connection.pcb != nullptr && (connection.input_size > 0 || connection.pending)) {
       static_cast<void>(Serve(connection));
     }
   }
 }
 
-hal::Micros EipService::NextDeadline() const {
-  // Input the core has not taken yet goes in on the next pass as soon as a reply fits.
-  // A deferred reply is retried on the pass after its drive accesses completed.
-  for (const Connection& connection : connections_) {
-    if (connection.pcb == nullptr || !CanTakeReply(connection)) continue;
-    if (connection.pending ? server_.ReadyToRetry(connection.id) : connection.input_size > 0) return 0;
-  }
-  return server_.NextDeadline();
+bool EipService::MustServeNow(const Slot& connection) const {
+  if (!CanTakeReply(connection)) return false;
+  return connection.pending ? server_.ReadyToRetry(connection.id) : connection.input_size > 0;
 }
 
-// tcp_accept_fn: "Only return ERR_ABRT if you have called tcp_abort from within the callback".
-err_t EipService::OnAccept(void* arg, tcp_pcb* pcb, err_t err) {
-  if (arg == nullptr || pcb == nullptr || err != ERR_OK) return ERR_VAL;
-  return static_cast<EipService*>(arg)->Accept(pcb);
-}
-
-err_t EipService::Accept(tcp_pcb* pcb) {
-  Connection* free_slot = nullptr;
-  for (Connection& connection : connections_) {
-    if (connection.pcb == nullptr) {
-      free_slot = &connection;
-      break;
-    }
-  }
+EipService::Slot* EipService::OpenConnection(tcp_pcb* pcb) {
+  Slot* connection = FreeSlot();
+  if (connection == nullptr) return nullptr;
   const base::Result<cip::TcpConnectionId> id =
-      free_slot == nullptr ? base::Result<cip::TcpConnectionId>(base::ResourceExhausted())
-                           : server_.OpenTcpConnection(Endpoint(&pcb->remote_ip, pcb->remote_port),
-                                                       clock_.NowMicros());
-  if (!id.ok()) {
-    ++counters_.refused;
-    slot_marks_.NoteRefused();
-    tcp_abort(pcb);
-    return ERR_ABRT;
-  }
-  Connection& connection = *free_slot;
-  connection.service = this;
-  connection.pcb = pcb;
-  connection.id = *id;
-  connection.input_size = 0;
-  connection.close_after_reply = false;
-  connection.pending = false;
-  AttachTcpConnection(pcb, &connection, TcpSlotCallbacks<Connection>::kCallbacks, options_.keepalive);
-  ++counters_.accepted;
-  slot_marks_.NoteTaken(SlotsHoldingPcb(connections_));
-  return ERR_OK;
+      server_.OpenTcpConnection(Endpoint(&pcb->remote_ip, pcb->remote_port), clock_.NowMicros());
+  if (!id.ok()) return nullptr;
+  connection->id = *id;
+  connection->input_size = 0;
+  connection->close_after_reply = false;
+  connection->pending = false;
+  return connection;
 }
 
-err_t EipService::Receive(Connection& connection, pbuf* p) {
-  if (p == nullptr) {
-    // The client is done; requests it left unanswered go with the connection.
-    ++counters_.closed_by_peer;
-    return Close(connection);
-  }
+bool EipService::TakeData(Slot& connection, const pbuf& p) {
   // The window is reopened only by consumed bytes, so a window's worth always fits.
-  const std::size_t room = connection.input.size() - connection.input_size;
-  if (p->tot_len > room) {
-    pbuf_free(p);
-    Abort(connection);
-    return ERR_ABRT;
-  }
-  pbuf_copy_partial(p, connection.input.data() + connection.input_size, p->tot_len, 0);
-  connection.input_size += p->tot_len;
-  pbuf_free(p);
-  return Serve(connection);
+  if (p.tot_len > connection.input.size() - connection.input_size) return false;
+  pbuf_copy_partial(&p, connection.input.data() + connection.input_size, p.tot_len, 0);
+  connection.input_size += p.tot_len;
+  return true;
 }
 
-bool EipService::CanTakeReply(const Connection& connection) const {
+bool EipService::CanTakeReply(const Slot& connection) const {
   return held_reply_size_ == 0 && !connection.close_after_reply &&
          tcp_sndbuf(connection.pcb) >= cip::kMaxReplyMessage && tcp_sndqueuelen(connection.pcb) < TCP_SND_QUEUELEN;
 }
 
 bool EipService::WriteHeldReply() {
   if (held_reply_size_ == 0) return true;
-  if (tcp_write(held_by_->pcb, held_reply_.data(), static_cast<u16_t>(held_reply_size_), TCP_WRITE_FLAG_COPY) !=
-      ERR_OK) {
-    return false;
-  }
+  if (!WriteTcp(held_by_->pcb, std::span<const std::uint8_t>(held_reply_.data(), held_reply_size_))) return false;
   held_reply_size_ = 0;
-  tcp_output(held_by_->pcb);
   held_by_ = nullptr;
   return true;
 }
 
-void EipService::DropHeldReply(const Connection& connection) {
-  if (held_by_ != &connection) return;
-  held_reply_size_ = 0;
-  held_by_ = nullptr;
-}
-
-err_t EipService::Serve(Connection& connection) {
+err_t EipService::Serve(Slot& connection) {
   if (!WriteHeldReply()) return ERR_OK;
-  if (connection.close_after_reply) {
-    ++counters_.closed_by_card;
-    return Close(connection);
-  }
+  if (connection.close_after_reply) return CloseByCard(connection);
   const hal::Micros now = clock_.NowMicros();
   std::size_t consumed_total = 0;
   while (CanTakeReply(connection)) {
@@ -193,17 +137,12 @@ err_t EipService::Serve(Connection& connection) {
     consumed_total += step.consumed;
     if (step.pending && !connection.pending) ++counters_.deferred_replies;
     connection.pending = step.pending;
-    if (!step.reply.empty()) {
-      if (tcp_write(connection.pcb, step.reply.data(), static_cast<u16_t>(step.reply.size()),
-                    TCP_WRITE_FLAG_COPY) == ERR_OK) {
-        tcp_output(connection.pcb);
-      } else {
-        // The core's reply buffer is reused by the next call: keep a copy (CanTakeReply stops the loop).
-        ++counters_.write_stalls;
-        std::memcpy(held_reply_.data(), step.reply.data(), step.reply.size());
-        held_reply_size_ = step.reply.size();
-        held_by_ = &connection;
-      }
+    if (!step.reply.empty() && !WriteTcp(connection.pcb, step.reply)) {
+      // The core's reply buffer is reused by the next call: keep a copy (CanTakeReply stops the loop).
+      ++counters_.write_stalls;
+      std::memcpy(held_reply_.data(), step.reply.data(), step.reply.size());
+      held_reply_size_ = step.reply.size();
+      held_by_ = &connection;
     }
     if (step.close) {
       connection.close_after_reply = true;
@@ -216,41 +155,22 @@ err_t EipService::Serve(Connection& connection) {
     std::memmove(connection.input.data(), connection.input.data() + consumed_total,
                  connection.input_size - consumed_total);
     connection.input_size -= consumed_total;
-    tcp_recved(connection.pcb, static_cast<u16_t>(consumed_total));
+    ReopenTcpWindow(connection.pcb, consumed_total);
   }
-  if (connection.close_after_reply && held_by_ != &connection) {
-    ++counters_.closed_by_card;
-    return Close(connection);
-  }
+  if (connection.close_after_reply && held_by_ != &connection) return CloseByCard(connection);
   return ERR_OK;
 }
 
-void EipService::Lost(Connection& connection) {
-  ++counters_.lost;
-  DropHeldReply(connection);
+void EipService::Release(Slot& connection) {
+  if (held_by_ == &connection) {
+    held_reply_size_ = 0;
+    held_by_ = nullptr;
+  }
   server_.CloseTcpConnection(connection.id);
 }
 
-err_t EipService::Close(Connection& connection) {
-  DropHeldReply(connection);
-  tcp_pcb* pcb = connection.pcb;
-  DetachTcpCallbacks(pcb);
-  connection.pcb = nullptr;
-  server_.CloseTcpConnection(connection.id);
-  return CloseOrAbortTcp(pcb);
-}
-
-void EipService::Abort(Connection& connection) {
-  DropHeldReply(connection);
-  tcp_pcb* pcb = connection.pcb;
-  DetachTcpCallbacks(pcb);
-  connection.pcb = nullptr;
-  server_.CloseTcpConnection(connection.id);
-  tcp_abort(pcb);
-}
-
-EipService::Connection* EipService::FindConnection(cip::TcpConnectionId id) {
-  for (Connection& connection : connections_) {
+EipService::Slot* EipService::FindConnection(cip::TcpConnectionId id) {
+  for (Slot& connection : slots()) {
     if (connection.pcb != nullptr && connection.id == id) return &connection;
   }
   return nullptr;

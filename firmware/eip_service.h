@@ -24,18 +24,16 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "base/pool_stats.h"
 #include "base/status.h"
 #include "cip/encapsulation_server.h"
 #include "configurable_service.h"
 #include "drive_link/card_config.h"
-#include "event_loop.h"
 #include "hal/clock.h"
 #include "lwip/tcp.h"
 #include "lwip/udp.h"
 #include "lwipopts.h"
 #include "tcp_keepalive.h"
-#include "tcp_pcb_util.h"
+#include "tcp_service.h"
 
 namespace firmware {
 
@@ -58,13 +56,22 @@ struct EipCounters {
   std::uint32_t deferred_retries = 0;  // their executions after the accesses completed
 };
 
-class EipService final : public Service, public ConfigurableService {
+// The protocol's part of a connection slot (TcpService adds the PCB).
+struct EipConnection {
+  cip::TcpConnectionId id;
+  // Received, not yet consumed by the core (at most one window).
+  std::array<std::uint8_t, TCP_WND> input{};
+  std::size_t input_size = 0;
+  bool close_after_reply = false;
+  bool pending = false;  // the core holds a message whose reply is deferred
+};
+
+class EipService final : public TcpService<EipService, EipConnection, cip::kMaxTcpConnections, EipCounters>,
+                         public ConfigurableService {
  public:
   EipService(cip::EncapsulationServer& server, const hal::Clock& clock, const EipOptions& options = {})
-      : server_(server), clock_(clock), options_(options) {}
-  ~EipService() override { Stop(); }
-  EipService(const EipService&) = delete;
-  EipService& operator=(const EipService&) = delete;
+      : TcpService(options.port, options.keepalive), server_(server), clock_(clock), udp_port_(options.port) {}
+  ~EipService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c500 = 1) or closes (c500 = 0) the ports.
   base::Status Configure(const drive_link::CardConfig& config) override;
@@ -73,63 +80,42 @@ class EipService final : public Service, public ConfigurableService {
   base::Status Start();
   // Closes both ports and resets every connection.
   void Stop();
-  bool listening() const { return listener_ != nullptr; }
 
   void Poll(hal::Micros now) override;
-  hal::Micros NextDeadline() const override;
-
-  const EipCounters& counters() const { return counters_; }
-  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: reset from
-  // the accept callback.
-  base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(connections_), connections_.size()); }
 
  private:
-  struct Connection {
-    EipService* service = nullptr;
-    tcp_pcb* pcb = nullptr;
-    cip::TcpConnectionId id;
-    // Received, not yet consumed by the core (at most one window).
-    std::array<std::uint8_t, TCP_WND> input{};
-    std::size_t input_size = 0;
-    bool close_after_reply = false;
-    bool pending = false;  // the core holds a message whose reply is deferred
-  };
-
-  static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
-  friend struct TcpSlotCallbacks<Connection>;
+  friend TcpService;
   static void OnUdp(void* arg, udp_pcb* pcb, pbuf* p, const ip_addr_t* address, u16_t port);
 
-  err_t Accept(tcp_pcb* pcb);
-  err_t Receive(Connection& connection, pbuf* p);
-  err_t Resume(Connection& connection) { return Serve(connection); }
-  void Lost(Connection& connection);
+  Slot* OpenConnection(tcp_pcb* pcb);
+  err_t RefuseConnection(tcp_pcb* pcb) { return RefuseWithReset(pcb); }
+  bool TakeData(Slot& connection, const pbuf& p);
   // Feeds buffered input to the core while replies fit, writes them, closes when the core says so.
-  // Returns ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
-  err_t Serve(Connection& connection);
-  bool CanTakeReply(const Connection& connection) const;
+  err_t Serve(Slot& connection);
+  err_t Resume(Slot& connection) { return Serve(connection); }
+  // The connection is gone: a reply it held goes with it.
+  void Release(Slot& connection);
+  // Input the core has not taken yet goes in on the next pass as soon as a reply fits. A deferred reply
+  // is retried on the pass after its drive accesses completed.
+  bool MustServeNow(const Slot& connection) const;
+  hal::Micros CoreDeadline() const { return server_.NextDeadline(); }
+
+  bool CanTakeReply(const Slot& connection) const;
   // Writes the held reply (whichever connection holds it); false while tcp_write still refuses it.
   bool WriteHeldReply();
-  // The connection is gone: a reply it held goes with it.
-  void DropHeldReply(const Connection& connection);
-  err_t Close(Connection& connection);
-  void Abort(Connection& connection);
-  Connection* FindConnection(cip::TcpConnectionId id);
+  Slot* FindConnection(cip::TcpConnectionId id);
   void ReceiveDatagram(pbuf* p, const ip_addr_t* address, u16_t port);
   void SendDatagram(const cip::Ipv4Endpoint& to, std::span<const std::uint8_t> bytes);
 
   cip::EncapsulationServer& server_;
   const hal::Clock& clock_;
-  EipOptions options_;
-  tcp_pcb* listener_ = nullptr;
+  std::uint16_t udp_port_;  // the same as the TCP listener's
   udp_pcb* udp_ = nullptr;
-  std::array<Connection, cip::kMaxTcpConnections> connections_{};
   // A reply tcp_write refused (one for all connections: while it waits, no connection is fed).
   std::array<std::uint8_t, cip::kMaxReplyMessage> held_reply_{};
   std::size_t held_reply_size_ = 0;
-  Connection* held_by_ = nullptr;
+  Slot* held_by_ = nullptr;
   std::array<std::uint8_t, cip::kMaxEncapsulationMessage> datagram_{};  // one received datagram
-  EipCounters counters_;
-  base::PoolWatermark slot_marks_;
 };
 
 }  // namespace firmware

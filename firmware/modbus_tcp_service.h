@@ -18,20 +18,16 @@
 //   its last answers.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 
-#include "base/pool_stats.h"
 #include "base/status.h"
 #include "configurable_service.h"
 #include "drive_link/card_config.h"
-#include "event_loop.h"
 #include "hal/clock.h"
-#include "lwip/tcp.h"
 #include "modbus/server.h"
 #include "tcp_keepalive.h"
-#include "tcp_pcb_util.h"
+#include "stream_tcp_service.h"
 
 namespace firmware {
 
@@ -49,7 +45,9 @@ struct ModbusTcpCounters {
   std::uint32_t write_errors = 0;    // tcp_write refused (no memory): retried later
 };
 
-class ModbusTcpService final : public Service, public ConfigurableService {
+class ModbusTcpService final : public StreamTcpService<ModbusTcpService, modbus::Server, modbus::ConnectionId,
+                                                       modbus::Server::kMaxClients, ModbusTcpCounters>,
+                               public ConfigurableService {
  public:
   // In flight per connection: two largest Modbus answers, in at most two segments (lwipopts.h sizes
   // the heap, IPE_HEAP_MODBUS, and MEMP_NUM_TCP_SEG for that). Answers a pipelining client
@@ -58,58 +56,19 @@ class ModbusTcpService final : public Service, public ConfigurableService {
   static constexpr std::size_t kMaxQueuedSegments = 2;
 
   ModbusTcpService(modbus::Server& server, const hal::Clock& clock, const ModbusTcpOptions& options = {})
-      : server_(server), clock_(clock), options_(options) {}
-  ~ModbusTcpService() override { Stop(); }
-  ModbusTcpService(const ModbusTcpService&) = delete;
-  ModbusTcpService& operator=(const ModbusTcpService&) = delete;
+      : StreamTcpService(server, clock, options.port, options.keepalive) {}
+  ~ModbusTcpService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Hands the configuration to the server and opens (c500 = 0) or closes (c500 = 1) the port.
   base::Status Configure(const drive_link::CardConfig& config) override;
-  // Listens on the port (no-op when listening). kResourceExhausted: no PCB; kFailedPrecondition: the
-  // port is taken.
-  base::Status Start();
-  // Closes the port and resets every connection.
-  void Stop();
-  bool listening() const { return listener_ != nullptr; }
-
-  void Poll(hal::Micros now) override;
-  hal::Micros NextDeadline() const override;
-
-  const ModbusTcpCounters& counters() const { return counters_; }
-  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: reset from
-  // the accept callback.
-  base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(clients_), clients_.size()); }
 
  private:
-  struct Client {
-    ModbusTcpService* service = nullptr;
-    tcp_pcb* pcb = nullptr;
-    modbus::ConnectionId id = 0;
-    // The last attempt to hand answers to TCP could not write everything: wait for an acknowledgement
-    // (sent callback) or lwIP's poll instead of asking the loop to come back at once.
-    bool stalled = false;
-  };
+  friend TcpService;
+  friend StreamTcpService;
 
-  static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
-  friend struct TcpSlotCallbacks<Client>;
-
-  err_t Accept(tcp_pcb* pcb);
-  err_t Receive(Client& client, pbuf* p);
-  err_t Resume(Client& client);
-  void Lost(Client& client);
-  // Reopens the window, hands answers to TCP, closes the connection when the server says so. Returns
-  // ERR_ABRT when it aborted the PCB (a callback must then return ERR_ABRT).
-  err_t Flush(Client& client);
-  err_t Close(Client& client);
-  void Abort(Client& client);
-
-  modbus::Server& server_;
-  const hal::Clock& clock_;
-  ModbusTcpOptions options_;
-  tcp_pcb* listener_ = nullptr;
-  std::array<Client, modbus::Server::kMaxClients> clients_{};
-  ModbusTcpCounters counters_;
-  base::PoolWatermark slot_marks_;
+  Slot* OpenConnection(tcp_pcb* pcb);
+  err_t RefuseConnection(tcp_pcb* pcb) { return RefuseWithReset(pcb); }
+  std::size_t SendRoom(tcp_pcb* pcb) const;
 };
 
 }  // namespace firmware

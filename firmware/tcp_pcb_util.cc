@@ -1,5 +1,7 @@
 #include "tcp_pcb_util.h"
 
+#include <algorithm>
+
 namespace firmware {
 
 base::Result<tcp_pcb*> OpenTcpListener(std::uint16_t port, void* arg, tcp_accept_fn accept) {
@@ -54,6 +56,20 @@ err_t DiscardTcpData(tcp_pcb* pcb, pbuf* p) {
     pbuf_free(p);
   }
   return ERR_OK;
+}
+
+void ReopenTcpWindow(tcp_pcb* pcb, std::size_t released) {
+  while (released > 0) {
+    const auto chunk = static_cast<u16_t>(std::min<std::size_t>(released, 0xFFFF));
+    tcp_recved(pcb, chunk);
+    released -= chunk;
+  }
+}
+
+bool WriteTcp(tcp_pcb* pcb, std::span<const std::uint8_t> bytes, u8_t flags) {
+  if (tcp_write(pcb, bytes.data(), static_cast<u16_t>(bytes.size()), flags) != ERR_OK) return false;
+  tcp_output(pcb);
+  return true;
 }
 
 err_t CloseOrAbortTcp(tcp_pcb* pcb) {

@@ -1,11 +1,12 @@
-// What every service bound to lwIP's raw TCP API does the same way (Modbus TCP, EtherNet/IP, HTTP):
+// The steps on one lwIP TCP PCB that the card's TCP services (TcpService, tcp_service.h) are made of:
 // open and close a listener, wire an accepted request/response connection, detach a PCB being given
-// up, and close with FIN or, without memory for the FIN, with RST.
+// up, read a received chain, reopen the window, write, and close with FIN or, without memory for the FIN,
+// with RST.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "base/status.h"
 #include "lwip/tcp.h"
@@ -43,53 +44,22 @@ void DetachTcpCallbacks(tcp_pcb* pcb);
 // data; a null pbuf needs nothing). Returns ERR_OK.
 err_t DiscardTcpData(tcp_pcb* pcb, pbuf* p);
 
-// The raw-API callbacks of a service that keeps one slot per connection (Modbus TCP, EtherNet/IP, HTTP):
-// lwIP's `arg` is the slot, whose `service` and `pcb` members route each event to the service:
-//   service->Receive(slot, p)  data, or p == nullptr for the peer's FIN;
-//   service->Resume(slot)      an acknowledgement or lwIP's poll: output that waited may go now;
-//   service->Lost(slot)        lwIP dropped the connection (RST, keepalive, retransmissions); the PCB is
-//                              already freed and slot.pcb is null.
-// Receive and Resume return ERR_ABRT when they aborted the PCB. A slot that no longer holds the PCB (it
-// was closed meanwhile) is left alone. The service befriends TcpSlotCallbacks<Slot>.
-template <typename Slot>
-struct TcpSlotCallbacks {
-  // tcp_recv_fn: "If the callback function returns ERR_OK or ERR_ABRT it must have freed the pbuf".
-  static err_t OnRecv(void* arg, tcp_pcb* pcb, pbuf* p, err_t err) {
-    auto* slot = static_cast<Slot*>(arg);
-    if (slot == nullptr || slot->pcb != pcb) return DiscardTcpData(pcb, p);
-    if (err != ERR_OK && p != nullptr) {
-      pbuf_free(p);
-      return ERR_OK;
-    }
-    return slot->service->Receive(*slot, p);
+// Hands the bytes of each pbuf of a chain to `take` (bool(std::span<const std::uint8_t>): taken whole?)
+// in order; false as soon as one is not taken whole.
+template <typename Take>
+bool ForEachPbufSegment(const pbuf& chain, Take take) {
+  for (const pbuf* q = &chain; q != nullptr; q = q->next) {
+    if (!take(std::span<const std::uint8_t>(static_cast<const std::uint8_t*>(q->payload), q->len))) return false;
   }
-  static err_t OnSent(void* arg, tcp_pcb* pcb, u16_t length) {
-    static_cast<void>(length);
-    return OnPoll(arg, pcb);
-  }
-  static err_t OnPoll(void* arg, tcp_pcb* pcb) {
-    auto* slot = static_cast<Slot*>(arg);
-    if (slot == nullptr || slot->pcb != pcb) return ERR_OK;
-    return slot->service->Resume(*slot);
-  }
-  // tcp_err_fn: the PCB is already freed; only the slot's state is left.
-  static void OnError(void* arg, err_t err) {
-    static_cast<void>(err);
-    auto* slot = static_cast<Slot*>(arg);
-    if (slot == nullptr || slot->pcb == nullptr) return;
-    slot->pcb = nullptr;
-    slot->service->Lost(*slot);
-  }
-  static constexpr TcpCallbacks kCallbacks{&OnRecv, &OnSent, &OnError, &OnPoll};
-};
-
-// The slots of a service's table that hold a PCB (its connection pool's `used`).
-template <typename Slot, std::size_t N>
-std::size_t SlotsHoldingPcb(const std::array<Slot, N>& slots) {
-  std::size_t count = 0;
-  for (const Slot& slot : slots) count += slot.pcb != nullptr ? 1 : 0;
-  return count;
+  return true;
 }
+
+// Reopens the receive window by `released` bytes (tcp_recved takes at most 0xFFFF at a time).
+void ReopenTcpWindow(tcp_pcb* pcb, std::size_t released);
+
+// Copies `bytes` into lwIP's send queue and sends what may go now. False when tcp_write refused them
+// (no memory): nothing was queued, the caller keeps the bytes and tries again later.
+bool WriteTcp(tcp_pcb* pcb, std::span<const std::uint8_t> bytes, u8_t flags = TCP_WRITE_FLAG_COPY);
 
 // FIN after the data already queued; when lwIP has no memory for the FIN, RST instead and ERR_ABRT
 // (a callback must then return ERR_ABRT). The PCB must be detached first.

@@ -4,17 +4,10 @@
 
 #include "cip/message_router_object.h"
 #include "lwip/stats.h"
-#include "lwip/memp.h"
+#include "lwip_internals.h"
 
 namespace firmware {
 namespace {
-
-// lwIP keeps pool names only in debug builds; take them from its own pool list.
-constexpr const char* kPoolNames[] = {
-#define LWIP_MEMPOOL(name, num, size, desc) #name,
-#include "lwip/priv/memp_std.h"
-};
-static_assert(sizeof(kPoolNames) / sizeof(kPoolNames[0]) == MEMP_MAX);
 
 void Proto(web::JsonWriter& json, const char* name, const stats_proto& p) {
   json.Key(name).BeginObject();
@@ -131,8 +124,8 @@ void CardWebStatus::WriteStatistics(web::JsonWriter& json) const {
   Proto(json, "udp", lwip_stats.udp);
   Proto(json, "tcp", lwip_stats.tcp);
   Mem(json, "heap", lwip_stats.mem);
-  for (int i = 0; i < MEMP_MAX; ++i) {
-    if (lwip_stats.memp[i] != nullptr) Mem(json, kPoolNames[i], *lwip_stats.memp[i]);
+  for (std::size_t i = 0; i < kLwipPoolCount; ++i) {
+    if (lwip_stats.memp[i] != nullptr) Mem(json, LwipPoolName(i), *lwip_stats.memp[i]);
   }
   json.EndObject();
   if (http_ == nullptr || web_service_ == nullptr) {

@@ -5,7 +5,8 @@
 //   every connection (Configure).
 // - At most web::kMaxHttpClients connections. One more is given the slot of the connection idle longest
 //   between requests (closed with FIN; browsers keep idle connections and reopen them at will); when every
-//   connection is busy it gets web::HttpServer::BusyResponse() (503, Retry-After: 1) and FIN.
+//   connection is busy it gets web::HttpServer::BusyResponse() (503, Retry-After: 1) and FIN. The slot
+//   pool's refused counts these (counters().refused_busy); an evicted idle connection is not a refusal.
 // - Received pbufs are copied into the server and freed at once; the window reopens as the server's
 //   buffer allows (HttpServer::TakeReleasedInput), so a request larger than one window still arrives.
 // - Answers: the head (status line, headers, JSON body) is copied into lwIP; an embedded asset's body is
@@ -15,18 +16,14 @@
 // - Keepalive as the other services (a vanished browser frees its slot).
 #pragma once
 
-#include <array>
 #include <cstdint>
 
-#include "base/pool_stats.h"
 #include "base/status.h"
 #include "configurable_service.h"
 #include "drive_link/card_config.h"
-#include "event_loop.h"
 #include "hal/clock.h"
-#include "lwip/tcp.h"
 #include "tcp_keepalive.h"
-#include "tcp_pcb_util.h"
+#include "stream_tcp_service.h"
 #include "web/http_server.h"
 
 namespace firmware {
@@ -46,55 +43,27 @@ struct WebServiceCounters {
   std::uint32_t write_errors = 0;    // tcp_write refused (no memory): retried later
 };
 
-class WebService final : public Service, public ConfigurableService {
+class WebService final : public StreamTcpService<WebService, web::HttpServer, web::HttpClientId,
+                                                 web::kMaxHttpClients, WebServiceCounters>,
+                         public ConfigurableService {
  public:
   WebService(web::HttpServer& server, const hal::Clock& clock, const WebServiceOptions& options = {})
-      : server_(server), clock_(clock), options_(options) {}
-  ~WebService() override { Stop(); }
-  WebService(const WebService&) = delete;
-  WebService& operator=(const WebService&) = delete;
+      : StreamTcpService(server, clock, options.port, options.keepalive) {}
+  ~WebService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c554 = 1) or closes (c554 = 0) the port.
   base::Status Configure(const drive_link::CardConfig& config) override;
-  base::Status Start();
-  void Stop();
-  bool listening() const { return listener_ != nullptr; }
-
-  void Poll(hal::Micros now) override;
-  hal::Micros NextDeadline() const override;
-
-  const WebServiceCounters& counters() const { return counters_; }
-  // The connection slots (docs/robustness.md "Exhaustion"): slots holding a PCB; refused: 503 and
-  // closed (counters().refused_busy; an evicted idle connection is not a refusal).
-  base::PoolStats slot_pool() const { return slot_marks_.Stats(SlotsHoldingPcb(clients_), clients_.size()); }
 
  private:
-  struct Client {
-    WebService* service = nullptr;
-    tcp_pcb* pcb = nullptr;
-    web::HttpClientId id = 0;
-    bool stalled = false;  // wait for an acknowledgement or lwIP's poll before writing again
-  };
+  friend TcpService;
+  friend StreamTcpService;
 
-  static err_t OnAccept(void* arg, tcp_pcb* pcb, err_t err);
-  friend struct TcpSlotCallbacks<Client>;
-
-  err_t Accept(tcp_pcb* pcb);
-  err_t RefuseBusy(tcp_pcb* pcb);
-  err_t Receive(Client& client, pbuf* p);
-  err_t Resume(Client& client);
-  void Lost(Client& client);
-  err_t Flush(Client& client);
-  err_t Close(Client& client);
-  void Abort(Client& client);
-
-  web::HttpServer& server_;
-  const hal::Clock& clock_;
-  WebServiceOptions options_;
-  tcp_pcb* listener_ = nullptr;
-  std::array<Client, web::kMaxHttpClients> clients_{};
-  WebServiceCounters counters_;
-  base::PoolWatermark slot_marks_;
+  Slot* OpenConnection(tcp_pcb* pcb);
+  err_t RefuseConnection(tcp_pcb* pcb);
+  std::size_t ReleasedInput(Slot& client);
+  void LoadOutput(Slot& client, hal::Micros now);
+  u8_t WriteFlags(const Slot& client) const;
+  std::size_t SendRoom(tcp_pcb* pcb) const;
 };
 
 }  // namespace firmware

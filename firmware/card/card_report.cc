@@ -2,19 +2,11 @@
 
 #include <array>
 
-#include "lwip/memp.h"
-#include "lwip/priv/tcp_priv.h"
 #include "lwip/stats.h"
+#include "lwip_internals.h"
 
 namespace firmware {
 namespace {
-
-// lwIP keeps pool names only in debug builds; take them from its own pool list instead.
-constexpr const char* kPoolNames[] = {
-#define LWIP_MEMPOOL(name, num, size, desc) #name,
-#include "lwip/priv/memp_std.h"
-};
-static_assert(sizeof(kPoolNames) / sizeof(kPoolNames[0]) == MEMP_MAX);
 
 void ReportProto(ReportSink& out, std::string_view name, const stats_proto& p) {
   out.Value({"lwip.", name, ".xmit"}, p.xmit);
@@ -43,20 +35,11 @@ void ReportMem(ReportSink& out, std::string_view prefix, std::string_view name, 
   out.Value({prefix, name, ".err"}, m.err);
 }
 
-std::uint64_t CountPcbs(const tcp_pcb* list) {
-  std::uint64_t count = 0;
-  for (const tcp_pcb* pcb = list; pcb != nullptr; pcb = pcb->next) ++count;
-  return count;
-}
-
-// lwIP's TCP PCB lists. A connection the card closed first stays in TIME_WAIT for 2 x TCP_MSL and keeps
-// its TCP_PCB (docs/robustness.md "Exhaustion"); these lines tell those apart from a leak.
 void ReportTcpPcbs(ReportSink& out) {
-  out.Value({"lwip.tcp_pcbs.active"}, CountPcbs(tcp_active_pcbs));
-  out.Value({"lwip.tcp_pcbs.time_wait"}, CountPcbs(tcp_tw_pcbs));
-  std::uint64_t listening = 0;
-  for (const tcp_pcb_listen* pcb = tcp_listen_pcbs.listen_pcbs; pcb != nullptr; pcb = pcb->next) ++listening;
-  out.Value({"lwip.tcp_pcbs.listen"}, listening);
+  const LwipTcpPcbCounts pcbs = CountLwipTcpPcbs();
+  out.Value({"lwip.tcp_pcbs.active"}, pcbs.active);
+  out.Value({"lwip.tcp_pcbs.time_wait"}, pcbs.time_wait);
+  out.Value({"lwip.tcp_pcbs.listen"}, pcbs.listen);
 }
 
 void ReportPorts(ReportSink& out, const hal::FramePort& port) {
@@ -306,9 +289,9 @@ void ReportNetifStats(const CardNetif& netif, ReportSink& out) {
   ReportProto(out, "tcp", lwip_stats.tcp);
   ReportTcpPcbs(out);
   ReportMem(out, "lwip.mem", "", lwip_stats.mem);
-  for (int i = 0; i < MEMP_MAX; ++i) {
+  for (std::size_t i = 0; i < kLwipPoolCount; ++i) {
     const stats_mem* pool = lwip_stats.memp[i];
-    if (pool != nullptr) ReportMem(out, "lwip.memp.", kPoolNames[i], *pool);
+    if (pool != nullptr) ReportMem(out, "lwip.memp.", LwipPoolName(i), *pool);
   }
 }
 

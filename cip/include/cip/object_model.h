@@ -74,6 +74,14 @@ struct AttributeSpec {
   bool in_get_all = true;
 };
 
+// The table of an object whose instance attributes are 1..N, each gettable and in Get_Attributes_All.
+template <std::size_t N>
+constexpr std::array<AttributeSpec, N> GettableAttributes() {
+  std::array<AttributeSpec, N> attributes{};
+  for (std::size_t i = 0; i < N; ++i) attributes[i] = {static_cast<std::uint16_t>(i + 1), Access::kGet, true};
+  return attributes;
+}
+
 struct ClassSpec {
   std::uint16_t class_id = 0;
   std::uint16_t revision = 1;
