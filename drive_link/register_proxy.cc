@@ -22,8 +22,8 @@ constexpr std::uint16_t kMaxBlockReadSelection = 10;
 
 std::uint16_t LoadNumber(std::size_t index) {
   if (index == kFd01LoadIndex) return reg::kFd01;
-  return index < kConfigNumberCount ? kConfigNumbers[index]
-                                    : static_cast<std::uint16_t>(kF875 + (index - kConfigNumberCount));
+  return index < config::kConfigNumberCount ? config::kConfigNumbers[index]
+                                    : static_cast<std::uint16_t>(kF875 + (index - config::kConfigNumberCount));
 }
 
 }  // namespace
@@ -245,15 +245,15 @@ void RegisterProxy::OnConfigRead(std::uint8_t index, const Completion& completio
 }
 
 void RegisterProxy::FinishLoad() {
-  parsed_ = ParseCardConfig(std::span<const AccessResult, kConfigNumberCount>(load_reads_.data(), kConfigNumberCount));
+  parsed_ = config::ParseCardConfig(std::span<const AccessResult, config::kConfigNumberCount>(load_reads_.data(), config::kConfigNumberCount));
   // F875-F879: a value the inverter cannot hold is reported like a configuration problem and not used.
   for (std::size_t i = 0; i < kBlockReadSelections; ++i) {
-    const AccessResult& read = load_reads_[kConfigNumberCount + i];
+    const AccessResult& read = load_reads_[config::kConfigNumberCount + i];
     const bool valid = read.ok() && read.value <= kMaxBlockReadSelection;
     block_selections_[i] = valid ? read.value : 0;
     if (valid) continue;
-    ConfigProblem problem{read.number, read.value,
-                          read.ok() ? ConfigProblem::Kind::kOutOfRange : ConfigProblem::Kind::kUnreadable,
+    config::ConfigProblem problem{read.number, read.value,
+                          read.ok() ? config::ConfigProblem::Kind::kOutOfRange : config::ConfigProblem::Kind::kUnreadable,
                           read.error};
     if (parsed_.problem_count < parsed_.problems.size()) parsed_.problems[parsed_.problem_count++] = problem;
     ++parsed_.problems_total;

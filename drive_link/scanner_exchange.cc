@@ -53,7 +53,7 @@ bool RegisterProxy::IsOwnedNumber(std::uint16_t number) {
 void RegisterProxy::ApplyConfig() {
   for (std::size_t i = 0; i < kScannerWordCount; ++i) {
     commands_[i] = CommandWord{};
-    commands_[i].target = CommandMenuTarget(config().command_menus[i]);
+    commands_[i].target = config::CommandMenuTarget(config().command_menus[i]);
   }
   commands_[kDriveFa06Word] = CommandWord{};
   commands_[kDriveFa06Word].target = reg::kFa06;
@@ -90,7 +90,7 @@ void RegisterProxy::PlanMonitorReads(bool keep_values) {
   };
   plan(reg::kFd01);  // always: c555, the c103 condition, "running" for error mapping
   for (std::size_t w = 0; w < kScannerWordCount; ++w) {
-    const std::uint16_t source = MonitorMenuSource(config().monitor_menus[w]);
+    const std::uint16_t source = config::MonitorMenuSource(config().monitor_menus[w]);
     word_read_[w] = source == 0 ? kNoRead : plan(source);
   }
   if (feedback_wanted_) {
@@ -364,12 +364,12 @@ void RegisterProxy::StoreRead(std::size_t r, std::uint16_t value) {
 void RegisterProxy::SetFd01(std::uint16_t fd01) {
   fd01_ = fd01;
   fd01_known_ = true;
-  SetOwned(kC555At, DriveStatusCode(fd01));  // written when it changes
+  SetOwned(kC555At, config::DriveStatusCode(fd01));  // written when it changes
 }
 
 // ---- Values the card owns ----------------------------------------------------------------------------
 
-void RegisterProxy::SetCardStatus(const CardStatus& status) {
+void RegisterProxy::SetCardStatus(const config::CardStatus& status) {
   // c536 follows the last event: a change of the firmware's ethernet_error, or a loss report.
   if (status.ethernet_error != status_.ethernet_error) c536_ = status.ethernet_error;
   status_ = status;

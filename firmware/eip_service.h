@@ -28,7 +28,7 @@
 #include "base/status.h"
 #include "cip/encapsulation_server.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "event_loop.h"
 #include "hal/clock.h"
 #include "lwip/tcp.h"
@@ -67,7 +67,7 @@ class EipService final : public Service, public ConfigurableService {
   EipService& operator=(const EipService&) = delete;
 
   // Opens (c500 = 1) or closes (c500 = 0) the ports.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   // Listens on TCP and UDP (no-op when open). kResourceExhausted: no PCB; kFailedPrecondition: a port
   // is taken. Nothing stays half open on failure.
   base::Status Start();

@@ -25,7 +25,7 @@
 #include "base/pool_stats.h"
 #include "base/status.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "event_loop.h"
 #include "hal/clock.h"
 #include "lwip/tcp.h"
@@ -64,7 +64,7 @@ class ModbusTcpService final : public Service, public ConfigurableService {
   ModbusTcpService& operator=(const ModbusTcpService&) = delete;
 
   // Hands the configuration to the server and opens (c500 = 0) or closes (c500 = 1) the port.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   // Listens on the port (no-op when listening). kResourceExhausted: no PCB; kFailedPrecondition: the
   // port is taken.
   base::Status Start();

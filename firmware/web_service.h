@@ -21,7 +21,7 @@
 #include "base/pool_stats.h"
 #include "base/status.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "event_loop.h"
 #include "hal/clock.h"
 #include "lwip/tcp.h"
@@ -55,7 +55,7 @@ class WebService final : public Service, public ConfigurableService {
   WebService& operator=(const WebService&) = delete;
 
   // Opens (c554 = 1) or closes (c554 = 0) the port.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   base::Status Start();
   void Stop();
   bool listening() const { return listener_ != nullptr; }

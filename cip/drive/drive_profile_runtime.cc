@@ -41,7 +41,7 @@ DriveProfileRuntime::DriveProfileRuntime(const DriveProfileLinks& links, const D
 
 DriveProfileRuntime::~DriveProfileRuntime() { links_.registers.Cancel(*this); }
 
-void DriveProfileRuntime::SetCardConfig(const drive_link::CardConfig& config) { config_ = config; }
+void DriveProfileRuntime::SetCardConfig(const config::CardConfig& config) { config_ = config; }
 
 // ---- Commands ------------------------------------------------------------------------------------------
 
@@ -129,7 +129,7 @@ bool DriveProfileRuntime::ScannerOutputOwned() const {
 
 bool DriveProfileRuntime::ScannerTargetsDriveCommand() const {
   for (std::uint16_t menu : config_.command_menus) {
-    const std::uint16_t target = drive_link::CommandMenuTarget(menu);
+    const std::uint16_t target = config::CommandMenuTarget(menu);
     if (target == reg::kFa06 || target == reg::kFa07) return true;
   }
   return false;

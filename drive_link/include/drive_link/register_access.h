@@ -14,39 +14,23 @@
 #include <cstdint>
 
 #include "base/status.h"
+#include "config/access_result.h"
+#include "config/card_config.h"
 #include "hal/clock.h"
 
 namespace drive_link {
 
-// Why an access failed. Each maps onto one protocol error in each front end (docs/modbus.md, docs/cip.md).
-enum class AccessError : std::uint8_t {
-  kNone,
-  kNoSuchRegister,           // a number ending A-F (refused locally) or the inverter's 0002
-  kOutOfRange,               // the inverter's 0001 "data error"
-  kNotWritableWhileRunning,  // the inverter's 0000 on a parameter write while the drive runs
-  kReadOnly,                 // a monitor (FC00-FEFF), a value the card owns (c502/c503, c517-c522,
-                             // c524-c536, c555, c041-c046, c061-c066) or FA30 (the card's fault
-                             // line): refused locally
-  kReservedForScanner,       // a command register the cyclic exchange owns (IO scanning, §9.1)
-  kRefused,                  // the inverter's 0000 otherwise, or 0003 "command error"
-  kLinkDown,                 // option fault e-23 or configuration not loaded yet: nothing was sent
-  kTimeout,                  // no reply after every retry
-  kNetworkLost,              // a run or speed command (FA06 with run/jog, FA07) while a network loss holds
-                             // the drive (CommandsHeldByLoss): refused locally, docs/drive-control.md
-};
-
-const char* AccessErrorName(AccessError error);
+// The outcome of one access and the scanner word count are the card's shared vocabulary (config/): the
+// front ends name them through this facade.
+using config::AccessError;
+using config::AccessErrorName;
+using config::AccessResult;
+using config::kScannerWordCount;
 
 // W writes RAM and EEPROM; P writes RAM only. EEPROM lasts about 100,000 writes (seed 000 §8.5): front
 // ends choose kRamAndEeprom only for an explicit parameter write by a user, never for cyclic data.
 enum class WriteMode : std::uint8_t { kRamAndEeprom, kRamOnly };
 
-struct AccessResult {
-  AccessError error = AccessError::kNone;
-  std::uint16_t number = 0;  // the communication number accessed
-  std::uint16_t value = 0;   // read: the value; write: the value the inverter accepted
-  bool ok() const { return error == AccessError::kNone; }
-};
 
 // Names one access in its completion; never kNoAccess.
 using AccessToken = std::uint32_t;
@@ -74,7 +58,6 @@ class DriveRegisters {
   virtual void Cancel(AccessListener& listener) = 0;
 };
 
-inline constexpr std::size_t kScannerWordCount = 6;
 using ScannerWords = std::array<std::uint16_t, kScannerWordCount>;
 
 // The cyclic exchange's image (seed 000 §3.2.4, §9.2). Word i is scanner word i+1: command word i goes

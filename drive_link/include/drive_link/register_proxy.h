@@ -25,7 +25,7 @@
 
 #include "base/pool_stats.h"
 #include "base/status.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/link_client.h"
 #include "drive_link/register_access.h"
 #include "hal/clock.h"
@@ -42,7 +42,7 @@ inline constexpr std::size_t kMaxPendingAccesses = 8;
 inline constexpr std::size_t kBlockReadSelections = 5;
 
 // The configuration load reads kConfigNumbers, then F875-F879, then FD01 (register_proxy.cc).
-inline constexpr std::size_t kConfigLoadReads = kConfigNumberCount + kBlockReadSelections + 1;
+inline constexpr std::size_t kConfigLoadReads = config::kConfigNumberCount + kBlockReadSelections + 1;
 
 // The command words the exchange writes: the 6 scanner words (index 0-5, targets from c001-c006), then
 // the drive command (6 = FA06, 7 = FA07, fixed targets, in use while taken). One table, so changes,
@@ -77,7 +77,7 @@ struct ProxyConfig {
 class ConfigListener {
  public:
   virtual ~ConfigListener() = default;
-  virtual void OnConfigLoaded(const ParsedConfig& parsed) = 0;
+  virtual void OnConfigLoaded(const config::ParsedConfig& parsed) = 0;
 };
 
 inline constexpr std::size_t kAccessErrorCount = static_cast<std::size_t>(AccessError::kNetworkLost) + 1;
@@ -127,11 +127,11 @@ class RegisterProxy final : public DriveRegisters,
   void SetConfigListener(ConfigListener* listener) { config_listener_ = listener; }
   // The values the card shows in c502/c503, c517-c535 and c536 (ethernet_error: see "Loss actions").
   // Written back (P) when they differ from what was last written.
-  void SetCardStatus(const CardStatus& status);
+  void SetCardStatus(const config::CardStatus& status);
 
   // The configuration in force: factory defaults until the first load.
-  const CardConfig& config() const { return parsed_.config; }
-  const ParsedConfig& parsed_config() const { return parsed_; }
+  const config::CardConfig& config() const { return parsed_.config; }
+  const config::ParsedConfig& parsed_config() const { return parsed_; }
   bool config_loaded() const { return loaded_; }
   // F875-F879 as read at the last load (the selections in force since the inverter's last reset).
   const std::array<std::uint16_t, kBlockReadSelections>& block_read_selections() const { return block_selections_; }
@@ -181,7 +181,7 @@ class RegisterProxy final : public DriveRegisters,
   // ---- The proxy's own transactions (one on the link at a time) ----
   enum class JobKind : std::uint8_t {
     kNone,
-    kConfigRead,    // index: position in kConfigNumbers, then F875-F879
+    kConfigRead,    // index: position in config::kConfigNumbers, then F875-F879
     kLossCheck,     // index: 0 cmod, 1 fmod (c103 = 1/2)
     kLossAction,    // the c101 write
     kCommandWrite,  // index: command word (0-5 scanner words, 6/7 the drive command)
@@ -316,7 +316,7 @@ class RegisterProxy final : public DriveRegisters,
   bool notify_loaded_ = false;       // OnConfigLoaded due at the end of this Poll
   std::uint8_t load_index_ = 0;
   std::array<AccessResult, kConfigLoadReads> load_reads_{};
-  ParsedConfig parsed_{};
+  config::ParsedConfig parsed_{};
   std::array<std::uint16_t, kBlockReadSelections> block_selections_{};
 
   // Command words (bit i of the masks = commands_[i]).
@@ -367,7 +367,7 @@ class RegisterProxy final : public DriveRegisters,
 
   // Owned values.
   std::array<OwnedValue, kOwnedValueCount> owned_{};
-  CardStatus status_{};
+  config::CardStatus status_{};
   std::uint16_t c536_ = 0;
   hal::Micros next_display_at_ = 0;
 
