@@ -12,8 +12,6 @@ constexpr std::uint8_t kDriveCommandWords = (1U << kDriveFa06Word) | (1U << kDri
 
 constexpr std::uint8_t Bit(std::size_t word) { return static_cast<std::uint8_t>(1U << word); }
 
-constexpr bool IsDriveCommandTarget(std::uint16_t number) { return number == reg::kFa06 || number == reg::kFa07; }
-
 }  // namespace
 
 void ScannerExchange::SetDriveCommand(const DriveCommandWords& words) {
@@ -55,13 +53,13 @@ bool ScannerExchange::ReleaseDriveCommand() {
   // Scanner words on FA06/FA07 take over again, written at once: the registers hold the drive profile's
   // values, not theirs.
   for (std::size_t w = 0; w < kScannerWordCount; ++w) {
-    if (IsDriveCommandTarget(commands_[w].target)) commands_[w].written_valid = false;
+    if (IsDriveCommandRegister(commands_[w].target)) commands_[w].written_valid = false;
   }
   return true;
 }
 
 bool ScannerExchange::DisplacedByDriveCommand(std::size_t w) const {
-  return drive_taken_ && w < kScannerWordCount && IsDriveCommandTarget(commands_[w].target);
+  return drive_taken_ && w < kScannerWordCount && IsDriveCommandRegister(commands_[w].target);
 }
 
 // FD00 and FE02 are read in each cycle only while wanted: the Modbus side's cycle does not pay for them.

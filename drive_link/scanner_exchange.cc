@@ -134,7 +134,7 @@ void ScannerExchange::SetCommandWordsMasked(const ScannerWords& words, std::uint
 bool ScannerExchange::IsScannerTarget(std::uint16_t number) const {
   if (number == 0) return false;
   // The drive profile owns FA06/FA07 while it has taken them.
-  if (drive_taken_ && (number == reg::kFa06 || number == reg::kFa07)) return true;
+  if (drive_taken_ && IsDriveCommandRegister(number)) return true;
   // §9.1: with Modbus IO scanning enabled the targets are reserved even before the scanner sends; else
   // from the first words a master sends (Modbus IO scanning or CIP assemblies 102/105).
   const bool claimed = claimed_ || (loader_.config().protocol == config::Protocol::kModbusTcp && loader_.config().io_scanning);

@@ -4,6 +4,7 @@
 #include "cip/drive/drive_units.h"
 #include "config/card_config.h"
 #include "drive_link/drive_registers.h"
+#include "drive_link/register_access.h"
 
 namespace cip::drive {
 
@@ -60,7 +61,7 @@ CommandWrites CommandRegisters(const DriveCommand& command, const DriveContext& 
       std::uint8_t mask = AllWords(command.scanner_count);
       for (std::size_t i = 0; i < drive_link::kScannerWordCount; ++i) {
         const std::uint16_t target = config::CommandMenuTarget(context.command_menus[i]);
-        if (target == reg::kFa06 || target == reg::kFa07) mask = static_cast<std::uint8_t>(mask & ~(1u << i));
+        if (drive_link::IsDriveCommandRegister(target)) mask = static_cast<std::uint8_t>(mask & ~(1u << i));
       }
       out.scanner_mask = mask;
       out.scanner_words = command.scanner_words;

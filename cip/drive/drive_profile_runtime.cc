@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "drive_link/drive_registers.h"
+#include "drive_link/register_access.h"
 
 namespace cip::drive {
 
@@ -130,7 +131,7 @@ bool DriveProfileRuntime::ScannerOutputOwned() const {
 bool DriveProfileRuntime::ScannerTargetsDriveCommand() const {
   for (std::uint16_t menu : config_.command_menus) {
     const std::uint16_t target = config::CommandMenuTarget(menu);
-    if (target == reg::kFa06 || target == reg::kFa07) return true;
+    if (drive_link::IsDriveCommandRegister(target)) return true;
   }
   return false;
 }

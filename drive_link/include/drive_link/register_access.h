@@ -16,6 +16,7 @@
 #include "base/status.h"
 #include "config/access_result.h"
 #include "config/card_config.h"
+#include "drive_link/drive_registers.h"
 #include "hal/clock.h"
 
 namespace drive_link {
@@ -84,6 +85,11 @@ struct DriveCommandWords {
   std::uint16_t fa07 = 0;
   constexpr bool operator==(const DriveCommandWords&) const = default;
 };
+
+// The registers the drive command owns: FA06 and FA07. While it is taken, a scanner word whose menu
+// targets one of them is displaced (not written by the exchange, not carried by assembly 100): the one
+// statement of that rule, for the drive link and the drive profile alike.
+constexpr bool IsDriveCommandRegister(std::uint16_t number) { return number == reg::kFa06 || number == reg::kFa07; }
 
 struct DriveFeedbackWords {
   std::uint16_t fd01 = 0;  // status
