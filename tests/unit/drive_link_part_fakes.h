@@ -14,25 +14,23 @@
 
 namespace drive_link::test {
 
-inline Completion OkCompletion(std::uint16_t data) {
+// A completion with `outcome` (kTimeout, kNoReply, kLinkDown: no reply data).
+inline Completion OutcomeCompletion(Outcome outcome) {
   Completion completion;
-  completion.outcome = Outcome::kOk;
+  completion.outcome = outcome;
+  completion.attempts = outcome == Outcome::kLinkDown ? 0 : 1;
+  return completion;
+}
+
+inline Completion OkCompletion(std::uint16_t data) {
+  Completion completion = OutcomeCompletion(Outcome::kOk);
   completion.data = data;
-  completion.attempts = 1;
   return completion;
 }
 
 inline Completion ErrorCompletion(wire::ErrorCode error) {
-  Completion completion;
-  completion.outcome = Outcome::kErrorReply;
+  Completion completion = OutcomeCompletion(Outcome::kErrorReply);
   completion.error = error;
-  completion.attempts = 1;
-  return completion;
-}
-
-inline Completion OutcomeCompletion(Outcome outcome) {
-  Completion completion;
-  completion.outcome = outcome;
   return completion;
 }
 
