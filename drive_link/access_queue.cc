@@ -38,14 +38,14 @@ AccessError AccessQueue::CheckRead(std::uint16_t number) const {
   return AccessError::kNone;
 }
 
-AccessError AccessQueue::CheckWrite(std::uint16_t number, std::uint16_t value) const {
+AccessError CheckRegisterWrite(std::uint16_t number, std::uint16_t value, const AccessRules& rules) {
   if (!reg::HasDecimalLastDigit(number)) return AccessError::kNoSuchRegister;
   if (reg::IsMonitorNumber(number) || CardWriteBack::IsOwnedNumber(number) || number == reg::kFa30) {
     return AccessError::kReadOnly;  // FA30 is the card's own fault line (c101 = 4)
   }
-  if (!rules_.ConfigLoaded()) return AccessError::kLinkDown;
-  if (rules_.IsScannerTarget(number)) return AccessError::kReservedForScanner;  // IO scanning (seed 000 §9.1)
-  if (RunOrSpeedCommand(number, value) && rules_.CommandsHeldByLoss()) {
+  if (!rules.ConfigLoaded()) return AccessError::kLinkDown;
+  if (rules.IsScannerTarget(number)) return AccessError::kReservedForScanner;  // IO scanning (seed 000 §9.1)
+  if (RunOrSpeedCommand(number, value) && rules.CommandsHeldByLoss()) {
     return AccessError::kNetworkLost;  // the loss action owns FA06: a success would be a lie
   }
   return AccessError::kNone;

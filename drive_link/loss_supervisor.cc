@@ -95,9 +95,9 @@ hal::Micros LossSupervisor::Deadline() const {
 
 hal::Micros LossSupervisor::RefreshDeadline() const {
   if (!action_active()) return hal::kNever;
-  if (action_ != kActionErr8) return action_written_ ? action_written_at_ + config_.command_refresh_interval : hal::kNever;
-  return stop_hold_valid_ && stop_hold_written_ ? stop_hold_written_at_ + config_.command_refresh_interval
-                                                : hal::kNever;
+  const hal::Micros refresh = config_.command_refresh_interval;
+  if (action_ != kActionErr8) return action_written_ ? action_written_at_ + refresh : hal::kNever;
+  return stop_hold_valid_ && stop_hold_written_ ? stop_hold_written_at_ + refresh : hal::kNever;
 }
 
 void LossSupervisor::Poll(hal::Micros now) {
@@ -175,10 +175,10 @@ void LossSupervisor::Decide() {
   ++counters_.loss_actions;
 }
 
-// FA06 for c101 = 0, 2, 3, 5, from the master's FA06 word as held when the action runs: the drive
-// command's while it is taken (a scanner word on FA06 is not written then), else the first scanner word
-// in use on FA06 that the master has sent, else the drive command's last FA06 if it was released since (the connection that
-// held it closed before c100 ran out).
+// FA06 for c101 = 0, 2, 3, 5, from the master's FA06 word as held when the action runs
+// (ScannerExchange::HeldFa06: the drive command's while taken, else the first scanner word in use on
+// FA06 that the master has sent, else the drive command's last FA06 if it was released since, the
+// connection that held it having closed before c100 ran out).
 std::uint16_t LossSupervisor::ActionFa06() const {
   // An explicit stop taken during the loss wins over the action (c101 = 5 would run the drive again).
   if (stop_hold_valid_) return stop_hold_;

@@ -137,7 +137,8 @@ bool ScannerExchange::IsScannerTarget(std::uint16_t number) const {
   if (drive_taken_ && IsDriveCommandRegister(number)) return true;
   // §9.1: with Modbus IO scanning enabled the targets are reserved even before the scanner sends; else
   // from the first words a master sends (Modbus IO scanning or CIP assemblies 102/105).
-  const bool claimed = claimed_ || (loader_.config().protocol == config::Protocol::kModbusTcp && loader_.config().io_scanning);
+  const config::CardConfig& card = loader_.config();
+  const bool claimed = claimed_ || (card.protocol == config::Protocol::kModbusTcp && card.io_scanning);
   if (!claimed) return false;
   for (std::size_t w = 0; w < kScannerWordCount; ++w) {
     if (commands_[w].target == number && CommandWordInUse(w)) return true;

@@ -1,5 +1,6 @@
 // Helpers for the register proxy's part tests (drive_link_*_test.cc): completions as the link gives
-// them, a ConfigLoader run through a whole load with chosen values, and AccessRules with settable answers.
+// them, a ConfigLoader run through a whole load with chosen values, and AccessRules with settable answers
+// (also what the DriveRegisters fakes answer CheckWrite with, through the real CheckRegisterWrite).
 #pragma once
 
 #include <cstdint>
@@ -62,7 +63,9 @@ inline std::vector<std::uint16_t> RunLoad(ConfigLoader& loader, const std::map<s
 class FakeAccessRules final : public AccessRules {
  public:
   bool ConfigLoaded() const override { return loaded; }
-  bool IsScannerTarget(std::uint16_t number) const override { return number == scanner_target; }
+  bool IsScannerTarget(std::uint16_t number) const override {
+    return number == scanner_target || (scanner != nullptr && scanner->IsScannerTarget(number));
+  }
   bool CommandsHeldByLoss() const override { return held_by_loss; }
   bool DriveRunning() const override { return running; }
   void OnWriteAccepted(std::uint16_t number, std::uint16_t value) override { accepted.emplace_back(number, value); }
@@ -70,6 +73,7 @@ class FakeAccessRules final : public AccessRules {
 
   bool loaded = true;
   std::uint16_t scanner_target = 0;
+  const ScannerImage* scanner = nullptr;  // asked too when set
   bool held_by_loss = false;
   bool running = false;
   std::vector<std::pair<std::uint16_t, std::uint16_t>> accepted;

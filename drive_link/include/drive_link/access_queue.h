@@ -39,15 +39,21 @@ class AccessRules {
   virtual void OnInverterReset(bool card_reset) = 0;
 };
 
+// The local refusals of a write, in this order: kNoSuchRegister (xxxA-xxxF), kReadOnly (a monitor, a
+// value the card owns, FA30), kLinkDown (no configuration loaded), kReservedForScanner, kNetworkLost (a
+// run or speed command while a loss holds the drive). kNone: the inverter decides. Only the queries of
+// `rules` are asked.
+AccessError CheckRegisterWrite(std::uint16_t number, std::uint16_t value, const AccessRules& rules);
+
 class AccessQueue {
  public:
   AccessQueue(AccessRules& rules, ProxyCounters& counters) : rules_(rules), counters_(counters) {}
 
-  // The local refusals, in this order: kNoSuchRegister (xxxA-xxxF), kReadOnly (a monitor, a value the
-  // card owns, FA30), kLinkDown (no configuration loaded), kReservedForScanner, kNetworkLost (a run or
-  // speed command while a loss holds the drive). kNone: the inverter decides.
+  // A read's local refusals: kNoSuchRegister, kLinkDown. A write's: CheckRegisterWrite.
   AccessError CheckRead(std::uint16_t number) const;
-  AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const;
+  AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const {
+    return CheckRegisterWrite(number, value, rules_);
+  }
 
   // DriveRegisters, after the proxy's own precondition (the link is up). A refusal is delivered on the
   // next Deliver like any result.

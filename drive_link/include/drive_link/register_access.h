@@ -54,6 +54,10 @@ class DriveRegisters {
   virtual base::Result<AccessToken> Read(std::uint16_t number, AccessListener& listener) = 0;
   virtual base::Result<AccessToken> Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
                                           AccessListener& listener) = 0;
+  // The refusal a Write of `value` to `number` would get now without reaching the inverter; kNone when
+  // the inverter decides. The one check of a register write (drive_link::CheckRegisterWrite): a front end
+  // asks it before a multi-register write, so that nothing is written when a later register is refused.
+  virtual AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const = 0;
   // Forgets every pending completion for `listener` (a connection closed). The accesses themselves run
   // to their end: a write already on the wire cannot be taken back.
   virtual void Cancel(AccessListener& listener) = 0;

@@ -95,6 +95,9 @@ class RegisterProxy final : public DriveRegisters,
   base::Result<AccessToken> Read(std::uint16_t number, AccessListener& listener) override;
   base::Result<AccessToken> Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
                                   AccessListener& listener) override;
+  AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const override {
+    return accesses_.CheckWrite(number, value);
+  }
   void Cancel(AccessListener& listener) override { accesses_.Cancel(listener); }
 
   // --- ScannerImage ---
