@@ -1,7 +1,6 @@
-// RegisterProxy: the pass (Poll/NextDeadline), the scheduling of the link between the proxy's own
-// transactions and on-demand accesses, link state changes and the configuration load. The cyclic
-// exchange is in scanner_exchange.cc, on-demand accesses in proxy_access.cc, loss actions in
-// loss_actions.cc (docs/drive-link.md, "Register proxy").
+// RegisterProxy: the composition of the proxy's parts. The pass (Poll/NextDeadline), the facades handed
+// on to the part that owns each concern, the own slot's priorities, link state changes and the
+// configuration load's start and end (docs/drive-link.md, "Register proxy").
 #include "drive_link/register_proxy.h"
 
 #include <algorithm>
@@ -9,150 +8,158 @@
 #include "drive_link/drive_registers.h"
 
 namespace drive_link {
-namespace {
-
-// F875-F879, read after kConfigNumbers: the block read selections in force. FD01 is read last, so the
-// drive's status is known the moment the load ends (a card reset resets the inverter too: the status
-// from before is gone, and the drive profile must not see "unknown" between the load and the first cycle).
-constexpr std::uint16_t kF875 = 0x0875;
-constexpr std::size_t kLoadReadCount = kConfigLoadReads;
-constexpr std::size_t kFd01LoadIndex = kLoadReadCount - 1;
-// F875-F879 choices 0-10 (seed 003 §4).
-constexpr std::uint16_t kMaxBlockReadSelection = 10;
-
-std::uint16_t LoadNumber(std::size_t index) {
-  if (index == kFd01LoadIndex) return reg::kFd01;
-  return index < kConfigNumberCount ? kConfigNumbers[index]
-                                    : static_cast<std::uint16_t>(kF875 + (index - kConfigNumberCount));
-}
-
-}  // namespace
 
 RegisterProxy::RegisterProxy(hal::SerialPort& port, const LinkConfig& link_config, const ProxyConfig& config)
-    : link_(port, link_config, this), config_(config) {}
+    : config_(config),
+      write_back_(config_, counters_),
+      exchange_(loader_, write_back_, config_, counters_,
+                config.use_block_reads && link_config.mode == wire::Mode::kBinary),
+      loss_(loader_, exchange_, write_back_, config_, counters_),
+      accesses_(*this, counters_),
+      scheduler_(port, link_config, accesses_, *this) {}
 
 base::Status RegisterProxy::Start(hal::Micros now) {
-  if (started_) return base::FailedPrecondition();
-  if (base::Status status = link_.Start(now); !status.ok()) return status;
-  started_ = true;
+  if (base::Status status = scheduler_.Start(now); !status.ok()) return status;
   now_ = now;
   // Requests wait in the link until its start-up silence is over.
   BeginLoad(/*card_reset=*/true);
-  Schedule(now);
+  scheduler_.Schedule(now);
   return base::OkStatus();
 }
 
 void RegisterProxy::Poll(hal::Micros now) {
-  if (!started_) return;
+  if (!scheduler_.started()) return;
   now_ = now;
   wake_ = false;
-  PollLoss(now);
-  Schedule(now);
-  // Completions arrive in OnComplete, which schedules the next transaction at once, so the link sends it
-  // in this same Poll.
-  link_.Poll(now);
-  DeliverAccesses();
+  loss_.Poll(now);
+  scheduler_.Schedule(now);
+  scheduler_.Poll(now);
+  accesses_.Deliver();
   if (notify_loaded_) {
     notify_loaded_ = false;
-    if (config_listener_ != nullptr) config_listener_->OnConfigLoaded(parsed_);
+    if (config_listener_ != nullptr) config_listener_->OnConfigLoaded(loader_.parsed());
   }
   // What the listeners asked for goes to the link now; it sends it on the next pass (NextDeadline says
   // "at once").
-  Schedule(now);
+  scheduler_.Schedule(now);
 }
 
 hal::Micros RegisterProxy::NextDeadline() const {
-  if (!started_) return hal::kNever;
+  if (!scheduler_.started()) return hal::kNever;
   // Something to deliver or to schedule since the last pass: at once.
   if (wake_ || notify_loaded_) return now_;
-  hal::Micros deadline = link_.NextDeadline();
-  if (loss_ == LossState::kDelay && loaded_) deadline = std::min(deadline, LossDeadline());
+  hal::Micros deadline = std::min(scheduler_.NextDeadline(), loss_.Deadline());
   // The own slot idles only between cycles (min_cycle_period) or with nothing to do: wake for the next
   // cycle, display sample and loss-action refresh.
-  if (own_request_ == kNoRequestId && loaded_ && !loading_ && !reset_on_link_ &&
-      link_.state() != LinkState::kFault) {
-    if (!cycle_active_) deadline = std::min(deadline, next_cycle_at_);
-    deadline = std::min(deadline, next_display_at_);
-    if (loss_action_active() && loss_action_written_ && loss_action_ != 4) {
-      deadline = std::min(deadline, loss_action_written_at_ + config_.command_refresh_interval);
-    }
-    if (loss_action_active() && loss_action_ == 4 && stop_hold_valid_ && stop_hold_written_) {
-      deadline = std::min(deadline, stop_hold_written_at_ + config_.command_refresh_interval);
-    }
+  if (scheduler_.own_slot_free() && loader_.loaded() && !loader_.loading() && !accesses_.reset_on_link() &&
+      !scheduler_.link_fault()) {
+    deadline = std::min({deadline, exchange_.NextCycleAt(), write_back_.next_display_at(), loss_.RefreshDeadline()});
   }
   return deadline;
 }
 
-// ---- Scheduling --------------------------------------------------------------------------------------
+// ---- Facades -----------------------------------------------------------------------------------------
 
-void RegisterProxy::Schedule(hal::Micros now) {
-  if (!started_ || link_.state() == LinkState::kFault) return;
-  // While an access that resets the inverter (f899, fault reset) is on the link, nothing of the proxy's
-  // own follows it: the master's command words must not reach an inverter that has just been reset.
-  if (own_request_ == kNoRequestId && !reset_on_link_) {
-    Job job;
-    if (NextJob(now, job)) {
-      const base::Result<RequestId> id = link_.Submit(job.transaction);
-      if (id.ok()) {
-        own_job_ = job;
-        own_request_ = *id;
-      }
-    }
-  }
-  if (!access_on_link_) SubmitAccess();
+base::Result<AccessToken> RegisterProxy::Read(std::uint16_t number, AccessListener& listener) {
+  if (!scheduler_.started() || scheduler_.link_fault()) return base::FailedPrecondition();
+  base::Result<AccessToken> token = accesses_.Read(number, listener);
+  if (token.ok()) wake_ = true;
+  return token;
 }
 
-// The proxy's own transactions in priority order. The link carries one of them and at most one on-demand
-// access at a time, so with both kinds waiting its FIFO alternates them.
-bool RegisterProxy::NextJob(hal::Micros now, Job& job) {
-  if (loading_) return NextConfigRead(job);
-  if (!loaded_) return false;
-  PollLoss(now);  // a c100 that ran out during the load, or just now
-  if (LossJob(now, job)) return true;
-  if (UrgentCommandWrite(job)) return true;
-  return CycleJob(now, job);
+base::Result<AccessToken> RegisterProxy::Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
+                                               AccessListener& listener) {
+  if (!scheduler_.started() || scheduler_.link_fault()) return base::FailedPrecondition();
+  base::Result<AccessToken> token = accesses_.Write(number, value, mode, listener);
+  if (token.ok()) wake_ = true;
+  return token;
 }
 
-void RegisterProxy::OnComplete(RequestId id, const Completion& completion) {
-  if (id == own_request_) {
-    const Job job = own_job_;
-    own_request_ = kNoRequestId;
-    own_job_ = Job{};
-    OnOwnComplete(job, completion);
+void RegisterProxy::SetCommandWordsMasked(const ScannerWords& words, std::uint8_t mask) {
+  exchange_.SetCommandWordsMasked(words, mask);
+  wake_ = true;
+}
+
+void RegisterProxy::SetDriveCommand(const DriveCommandWords& words) {
+  exchange_.SetDriveCommand(words);
+  wake_ = true;
+}
+
+void RegisterProxy::ReleaseDriveCommand() {
+  if (exchange_.ReleaseDriveCommand()) wake_ = true;
+}
+
+void RegisterProxy::SetFeedbackWanted(bool wanted) {
+  if (exchange_.SetFeedbackWanted(wanted)) wake_ = true;
+}
+
+void RegisterProxy::HoldStopDuringLoss(std::uint16_t fa06) {
+  if (loss_.HoldStopDuringLoss(fa06)) wake_ = true;
+}
+
+void RegisterProxy::NetworkLost(LossCause cause, hal::Micros now) {
+  if (loss_.NetworkLost(cause, now)) wake_ = true;
+}
+
+void RegisterProxy::NetworkRestored(hal::Micros /*now*/) {
+  loss_.NetworkRestored();
+  wake_ = true;
+}
+
+void RegisterProxy::SetCardStatus(const config::CardStatus& status) {
+  write_back_.SetCardStatus(status);
+  wake_ = true;
+}
+
+// ---- What a completed access means to the rest -----------------------------------------------------
+
+void RegisterProxy::OnWriteAccepted(std::uint16_t number, std::uint16_t value) {
+  if (number == reg::kFa06) HoldStopDuringLoss(value);
+}
+
+void RegisterProxy::OnInverterReset(bool card_reset) {
+  if (card_reset) {
+    BeginLoad(/*card_reset=*/true);
   } else {
-    for (Access& access : accesses_) {
-      if (access.state == Access::State::kOnLink && access.request == id) {
-        access_on_link_ = false;
-        OnAccessComplete(access, completion);
-        break;
-      }
-    }
+    exchange_.MarkCommandsUnknown();
   }
-  Schedule(now_);
 }
 
-void RegisterProxy::OnOwnComplete(const Job& job, const Completion& completion) {
+// ---- The own slot ------------------------------------------------------------------------------------
+
+// The proxy's own transactions in priority order: the load, then the loss supervision, then a changed
+// command word, then the cycle (with the write-backs between cycles).
+bool RegisterProxy::NextOwnJob(hal::Micros now, OwnJob& job) {
+  if (loader_.loading()) return loader_.NextRead(job);
+  if (!loader_.loaded()) return false;
+  loss_.Poll(now);  // a c100 that ran out during the load, or just now
+  if (loss_.NextJob(now, job)) return true;
+  if (exchange_.UrgentCommandWrite(now, job)) return true;
+  return exchange_.CycleJob(now, job);
+}
+
+void RegisterProxy::OnOwnComplete(const OwnJob& job, const Completion& completion, hal::Micros now) {
   switch (job.kind) {
-    case JobKind::kNone:
+    case OwnJobKind::kNone:
       break;
-    case JobKind::kConfigRead:
-      OnConfigRead(job.index, completion);
+    case OwnJobKind::kConfigRead:
+      if (loader_.OnRead(job.index, completion)) FinishLoad(now);
       break;
-    case JobKind::kLossCheck:
-      OnLossCheckRead(job.index, completion);
+    case OwnJobKind::kLossCheck:
+      loss_.OnCheckRead(job.index, completion);
       break;
-    case JobKind::kLossAction:
-      OnLossActionWritten(job.index, completion, now_);
+    case OwnJobKind::kLossAction:
+      loss_.OnActionWritten(job.index, completion, now);
       break;
-    case JobKind::kCommandWrite:
-      OnCommandWritten(job, completion);
+    case OwnJobKind::kCommandWrite:
+      exchange_.OnCommandWritten(job, completion);
       break;
-    case JobKind::kBlockRead:
-    case JobKind::kMonitorRead:
-      OnMonitorRead(job, completion);
+    case OwnJobKind::kBlockRead:
+    case OwnJobKind::kMonitorRead:
+      exchange_.OnMonitorRead(job, completion);
       break;
-    case JobKind::kOwnedWrite:
-      OnOwnedWritten(job.index, completion);
+    case OwnJobKind::kOwnedWrite:
+      write_back_.OnWritten(job.index, completion);
       break;
   }
 }
@@ -161,8 +168,8 @@ void RegisterProxy::OnLinkStateChanged(LinkState previous, LinkState current) {
   if (current == LinkState::kFault) {
     // e-23: the link refuses requests and completes the queued ones with kLinkDown. An interrupted load
     // starts again from the beginning when the link is back; so does the cycle.
-    loading_ = false;
-    cycle_active_ = false;
+    loader_.Abandon();
+    exchange_.AbandonCycle();
     FailWaitingAccesses(AccessError::kLinkDown);
     return;
   }
@@ -174,8 +181,8 @@ void RegisterProxy::OnLinkStateChanged(LinkState previous, LinkState current) {
   } else if (previous == LinkState::kDegraded) {
     // A silence too short for e-23 may still have been an inverter reset (panel or terminal RES): the
     // inverter would have forgotten FA06/FA07. Write the command words and owned values again.
-    MarkCommandsUnknown();
-    for (OwnedValue& value : owned_) value.written_valid = false;
+    exchange_.MarkCommandsUnknown();
+    write_back_.MarkAllUnknown();
   }
 }
 
@@ -186,89 +193,26 @@ void RegisterProxy::BeginLoad(bool card_reset) {
     // Start-up or f899: the card starts afresh. Command words wait for the master's next words (the
     // drive command is given back and waits for the next SetDriveCommand), no loss is known; what the
     // front ends report from now on counts. Whether the drive feedback is wanted stays: it writes nothing.
-    held_ = ScannerWords{};
-    drive_command_ = DriveCommandWords{};
-    armed_ = 0;
-    claimed_ = false;
-    scanner_mask_ = kAllScannerWords;
-    drive_taken_ = false;
-    fault_reset_edges_ = 0;
-    loss_ = LossState::kNone;
-    stop_hold_valid_ = false;
-    c536_ = 0;
+    exchange_.CardReset();
+    loss_.CardReset();
   }
-  loading_ = true;
-  loaded_ = false;
-  load_index_ = 0;
-  cycle_active_ = false;
+  loader_.Begin();
+  exchange_.AbandonCycle();
   // Accesses not yet sent cannot be checked against a configuration that is being replaced.
   FailWaitingAccesses(AccessError::kLinkDown);
 }
 
-bool RegisterProxy::NextConfigRead(Job& job) {
-  if (load_index_ >= kLoadReadCount) return false;
-  job.kind = JobKind::kConfigRead;
-  job.index = load_index_;
-  job.transaction = Transaction::Read(LoadNumber(load_index_));
-  return true;
-}
-
-void RegisterProxy::OnConfigRead(std::uint8_t index, const Completion& completion) {
-  if (!loading_ || index != load_index_) return;  // a load abandoned by e-23
-  if (completion.outcome == Outcome::kLinkDown) return;
-  AccessResult& read = load_reads_[index];
-  read = AccessResult{};
-  read.number = LoadNumber(index);
-  if (completion.ok()) {
-    read.value = completion.data;
-  } else if (completion.outcome == Outcome::kErrorReply) {
-    switch (completion.error) {
-      case wire::ErrorCode::kCommunicationNumberError:
-        read.error = AccessError::kNoSuchRegister;
-        break;
-      case wire::ErrorCode::kDataError:
-        read.error = AccessError::kOutOfRange;
-        break;
-      case wire::ErrorCode::kChecksumError:
-        read.error = AccessError::kTimeout;
-        break;
-      case wire::ErrorCode::kImpossibleToExecute:
-      case wire::ErrorCode::kCommandError:
-        read.error = AccessError::kRefused;
-        break;
-    }
-  } else {
-    read.error = AccessError::kTimeout;
-  }
-  ++load_index_;
-  if (load_index_ == kLoadReadCount) FinishLoad();
-}
-
-void RegisterProxy::FinishLoad() {
-  parsed_ = ParseCardConfig(std::span<const AccessResult, kConfigNumberCount>(load_reads_.data(), kConfigNumberCount));
-  // F875-F879: a value the inverter cannot hold is reported like a configuration problem and not used.
-  for (std::size_t i = 0; i < kBlockReadSelections; ++i) {
-    const AccessResult& read = load_reads_[kConfigNumberCount + i];
-    const bool valid = read.ok() && read.value <= kMaxBlockReadSelection;
-    block_selections_[i] = valid ? read.value : 0;
-    if (valid) continue;
-    ConfigProblem problem{read.number, read.value,
-                          read.ok() ? ConfigProblem::Kind::kOutOfRange : ConfigProblem::Kind::kUnreadable,
-                          read.error};
-    if (parsed_.problem_count < parsed_.problems.size()) parsed_.problems[parsed_.problem_count++] = problem;
-    ++parsed_.problems_total;
-  }
-  loading_ = false;
-  loaded_ = true;
+void RegisterProxy::FinishLoad(hal::Micros now) {
   ++counters_.config_loads;
   // An action in force is carried out again (after a link recovery the inverter may have lost it).
-  loss_action_written_ = false;
-  stop_hold_written_ = false;
-  ApplyConfig();
-  if (const AccessResult& fd01 = load_reads_[kFd01LoadIndex]; fd01.ok()) SetFd01(fd01.value);
-  next_cycle_at_ = now_;
-  next_display_at_ = now_;
+  loss_.OnConfigLoaded();
+  exchange_.ApplyConfig(now);
   notify_loaded_ = true;
+}
+
+void RegisterProxy::FailWaitingAccesses(AccessError error) {
+  accesses_.FailWaiting(error);
+  wake_ = true;
 }
 
 }  // namespace drive_link

@@ -30,7 +30,7 @@ Ipv4Config UsableManual(const Ipv4Config& given) {
 
 }  // namespace
 
-AddressingPlan PlanFromConfig(const drive_link::CardConfig& config) {
+AddressingPlan PlanFromConfig(const config::CardConfig& config) {
   AddressingPlan plan;
   plan.mode = config.ip_mode;
   plan.manual = {FromOctets(config.ip), FromOctets(config.netmask), FromOctets(config.gateway)};
@@ -71,7 +71,7 @@ CardAddressing::~CardAddressing() {
   if (netif_dhcp_data(&netif_.lwip_netif()) == &dhcp_) dhcp_remove_struct(&netif_.lwip_netif());
 }
 
-base::Status CardAddressing::Configure(const drive_link::CardConfig& config) {
+base::Status CardAddressing::Configure(const config::CardConfig& config) {
   const AddressingPlan plan = PlanFromConfig(config);
   if (configured_ && plan == plan_) return base::OkStatus();
   plan_ = plan;
@@ -105,15 +105,15 @@ void CardAddressing::Restart(hal::Micros now) {
   // The device name is the DHCP host name (and client identifier); an empty one sends neither.
   netif_set_hostname(&nif, plan_.host_name[0] != '\0' ? plan_.host_name.data() : nullptr);
   switch (plan_.mode) {
-    case drive_link::IpMode::kManual: {
+    case config::IpMode::kManual: {
       const Ipv4Config manual = UsableManual(plan_.manual);
       if (manual.address != 0) UseAddress(manual, now);
       break;
     }
-    case drive_link::IpMode::kBootp:
+    case config::IpMode::kBootp:
       StartBootp(now);
       break;
-    case drive_link::IpMode::kDhcp:
+    case config::IpMode::kDhcp:
       dhcp_restart_at_ = now;  // started from Poll, like a restart after a conflict
       break;
   }
@@ -151,17 +151,17 @@ AddressPhase CardAddressing::phase() const {
   if (target_set_ && acd_enabled_) {
     return acd_.State() == net::AcdState::kConflict ? AddressPhase::kConflict : AddressPhase::kProbing;
   }
-  if (plan_.mode == drive_link::IpMode::kManual) return AddressPhase::kNotConfigured;
+  if (plan_.mode == config::IpMode::kManual) return AddressPhase::kNotConfigured;
   return AddressPhase::kAcquiring;
 }
 
 void CardAddressing::Poll(hal::Micros now) {
   if (!configured_) return;
-  if (plan_.mode == drive_link::IpMode::kDhcp) {
+  if (plan_.mode == config::IpMode::kDhcp) {
     PollDhcp(now);
     return;
   }
-  if (plan_.mode == drive_link::IpMode::kBootp) PollBootp(now);
+  if (plan_.mode == config::IpMode::kBootp) PollBootp(now);
   if (target_set_ && acd_enabled_) acd_.Poll(now);
   PollManualOrBootp();
 }

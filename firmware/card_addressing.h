@@ -26,7 +26,7 @@
 #include "base/status.h"
 #include "card_netif.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "event_loop.h"
 #include "hal/clock.h"
 #include "hal/random.h"
@@ -40,14 +40,14 @@ namespace firmware {
 
 // What Configure takes from the configuration; a change of any of it restarts the addressing.
 struct AddressingPlan {
-  drive_link::IpMode mode = drive_link::IpMode::kManual;
+  config::IpMode mode = config::IpMode::kManual;
   Ipv4Config manual;                  // c505-c516 as given (validated when used)
   std::array<char, 17> host_name{};  // c081-c096, NUL-terminated
 
   bool operator==(const AddressingPlan&) const = default;
 };
 
-AddressingPlan PlanFromConfig(const drive_link::CardConfig& config);
+AddressingPlan PlanFromConfig(const config::CardConfig& config);
 
 // The mask a manual or BOOTP address gets when none (or a non-contiguous one) is given: class A, B or C.
 std::uint32_t ClassfulMask(std::uint32_t address);
@@ -83,7 +83,7 @@ class CardAddressing final : public Service, public ConfigurableService, public 
   // configuration load).
   void SetAcdEnabled(bool enabled) { acd_selected_ = enabled; }
 
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override;
 
@@ -92,7 +92,7 @@ class CardAddressing final : public Service, public ConfigurableService, public 
   void OnPortLinkUp(hal::PortId port) override;
 
   AddressPhase phase() const;
-  drive_link::IpMode mode() const { return plan_.mode; }
+  config::IpMode mode() const { return plan_.mode; }
   bool configured() const { return configured_; }
   // The address in lwIP (host order; 0.0.0.0 when none).
   Ipv4Config active() const;

@@ -9,8 +9,8 @@ CardIndicators::CardIndicators(const IndicatorSources& sources, hal::Leds& leds,
   model_.StartPowerUpTest(now);
 }
 
-base::Status CardIndicators::Configure(const drive_link::CardConfig& config) {
-  protocol_ = config.protocol == drive_link::Protocol::kEtherNetIp ? net::Protocol::kEtherNetIp
+base::Status CardIndicators::Configure(const config::CardConfig& config) {
+  protocol_ = config.protocol == config::Protocol::kEtherNetIp ? net::Protocol::kEtherNetIp
                                                                    : net::Protocol::kModbusTcp;
   next_change_ = 0;  // re-evaluate at once
   return base::OkStatus();

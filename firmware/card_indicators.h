@@ -38,7 +38,7 @@ class CardIndicators final : public Service, public ConfigurableService {
     next_change_ = 0;
   }
 
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override { return next_change_; }
 

@@ -79,8 +79,8 @@ void CardStatusPublisher::ConfigureFrontEnds(bool only_pending) {
   }
 }
 
-drive_link::CardStatus CardStatusPublisher::CurrentStatus() {
-  drive_link::CardStatus status;
+config::CardStatus CardStatusPublisher::CurrentStatus() {
+  config::CardStatus status;
   hal::FramePort& port = netif_.port();
   bool carrier = false;
   for (std::size_t i = 0; i < status.port_rates.size(); ++i) {
@@ -101,7 +101,7 @@ drive_link::CardStatus CardStatusPublisher::CurrentStatus() {
 void CardStatusPublisher::Poll(hal::Micros now) {
   if (now < next_publish_) return;
   next_publish_ = now + kPublishInterval;
-  drive_link::CardStatus status = CurrentStatus();
+  config::CardStatus status = CurrentStatus();
   proxy_.SetCardStatus(status);
   status.ethernet_error = proxy_.ethernet_error();
   board_.status = status;
@@ -111,7 +111,7 @@ void CardStatusPublisher::Poll(hal::Micros now) {
   if (identity_wanted_ && identity_token_ == drive_link::kNoAccess) RequestIdentity();
 }
 
-void CardStatusPublisher::OnConfigLoaded(const drive_link::ParsedConfig& parsed) {
+void CardStatusPublisher::OnConfigLoaded(const config::ParsedConfig& parsed) {
   config_ = parsed.config;
   // Closing one protocol's ports first frees PCBs for the other's listeners: the order of the front
   // ends does not matter, a refusal is retried at the next publish.

@@ -56,7 +56,7 @@ class CardStatusPublisher final : public Service,
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override { return next_publish_; }
 
-  void OnConfigLoaded(const drive_link::ParsedConfig& parsed) override;
+  void OnConfigLoaded(const config::ParsedConfig& parsed) override;
 
   // One more front end, for one built after the publisher (the web server, whose pages show the
   // publisher's data). kResourceExhausted beyond kMaxFrontEnds.
@@ -68,7 +68,7 @@ class CardStatusPublisher final : public Service,
   void OnAccessDone(drive_link::AccessToken token, const drive_link::AccessResult& result) override;
   void RequestIdentity();
   void ConfigureFrontEnds(bool only_pending);
-  drive_link::CardStatus CurrentStatus();
+  config::CardStatus CurrentStatus();
 
   drive_link::RegisterProxy& proxy_;
   modbus::Server& modbus_server_;
@@ -77,7 +77,7 @@ class CardStatusPublisher final : public Service,
   std::array<ConfigurableService*, kMaxFrontEnds> front_ends_{};
   std::size_t front_end_count_ = 0;
   modbus::OptionBoardData board_;
-  drive_link::CardConfig config_;  // the last configuration loaded
+  config::CardConfig config_;  // the last configuration loaded
   std::array<bool, kMaxFrontEnds> pending_{};  // a front end refused it (no PCB): try again
   hal::Micros next_publish_ = 0;
 

@@ -25,8 +25,8 @@ bool IsDeviceNameCharacter(std::uint8_t c) { return c >= 0x20 && c <= 0x7E; }
 
 // The application settings of the card (not its communication settings): the scanner mapping and the
 // loss reaction. "Configured" (Identity status bit 2) means one differs from the out-of-box default.
-bool ApplicationConfigured(const drive_link::CardConfig& config) {
-  const drive_link::CardConfig defaults;
+bool ApplicationConfigured(const config::CardConfig& config) {
+  const config::CardConfig defaults;
   return config.command_menus != defaults.command_menus || config.monitor_menus != defaults.monitor_menus ||
          config.loss_delay_tenths != defaults.loss_delay_tenths || config.loss_action != defaults.loss_action ||
          config.loss_preset_speed != defaults.loss_preset_speed ||
@@ -76,7 +76,7 @@ cip::AcdConflict CardTcpIp::LastConflict() const {
   return conflict;
 }
 
-base::Status CardTcpIp::Configure(const drive_link::CardConfig& config) {
+base::Status CardTcpIp::Configure(const config::CardConfig& config) {
   settings_.startup = static_cast<cip::StartupConfiguration>(config.ip_mode);
   settings_.static_configuration.ip_address = FromOctets(config.ip);
   settings_.static_configuration.network_mask = FromOctets(config.netmask);
@@ -201,7 +201,7 @@ base::Status CardTcpIp::SaveExtras(const cip::TcpIpSettings& settings) {
 
 // ---- CardEthernetLinks ------------------------------------------------------------------------------
 
-base::Status CardEthernetLinks::Configure(const drive_link::CardConfig& config) {
+base::Status CardEthernetLinks::Configure(const config::CardConfig& config) {
   setting_ = static_cast<cip::LinkSetting>(config.rate_setting);
   return base::OkStatus();
 }

@@ -61,7 +61,7 @@ class CardTcpIp final : public cip::TcpIpProvider,
   CardTcpIp(CardNetif& netif, CardAddressing& addressing, ParameterWriter& writer, hal::NvStore& store);
 
   // The inverter's part of the stored settings, from each configuration load.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
 
   cip::InterfaceConfiguration ActiveConfiguration() const override;
   bool ConfigurationValid() const override;
@@ -92,7 +92,7 @@ class CardEthernetLinks final : public cip::EthernetLinkProvider, public Configu
   CardEthernetLinks(CardNetif& netif, ParameterWriter& writer) : netif_(netif), writer_(writer) {}
 
   // c501, from each configuration load.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
 
   cip::LinkState State(cip::LinkPort port) const override;
   cip::InterfaceCounters Counters(cip::LinkPort port) const override;

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "base/status.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 
 namespace firmware {
 
@@ -12,7 +12,7 @@ class ConfigurableService {
  public:
   virtual ~ConfigurableService() = default;
   // A failure (no PCB free for a listener) is retried at the next publish.
-  virtual base::Status Configure(const drive_link::CardConfig& config) = 0;
+  virtual base::Status Configure(const config::CardConfig& config) = 0;
 };
 
 // What the publisher learns of the drive once per configuration load: FB05 (model code) and FE08

@@ -25,8 +25,8 @@ cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
 
 EipService::~EipService() { Stop(); }
 
-base::Status EipService::Configure(const drive_link::CardConfig& config) {
-  if (config.protocol == drive_link::Protocol::kEtherNetIp) return Start();
+base::Status EipService::Configure(const config::CardConfig& config) {
+  if (config.protocol == config::Protocol::kEtherNetIp) return Start();
   Stop();
   return base::OkStatus();
 }

@@ -27,7 +27,7 @@
 #include "base/status.h"
 #include "cip/encapsulation_server.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "hal/clock.h"
 #include "lwip/tcp.h"
 #include "lwip/udp.h"
@@ -74,7 +74,7 @@ class EipService final : public TcpService<EipService, EipConnection, cip::kMaxT
   ~EipService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c500 = 1) or closes (c500 = 0) the ports.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   // Listens on TCP and UDP (no-op when open). kResourceExhausted: no PCB; kFailedPrecondition: a port
   // is taken. Nothing stays half open on failure.
   base::Status Start();

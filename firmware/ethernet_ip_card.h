@@ -113,7 +113,7 @@ class EtherNetIpCard final : private DriveControlListener {
   class DriveProfileConfig final : public ConfigurableService {
    public:
     explicit DriveProfileConfig(cip::drive::DriveProfileRuntime& runtime) : runtime_(runtime) {}
-    base::Status Configure(const drive_link::CardConfig& config) override {
+    base::Status Configure(const config::CardConfig& config) override {
       runtime_.SetCardConfig(config);
       return base::OkStatus();
     }

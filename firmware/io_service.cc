@@ -6,8 +6,8 @@
 
 namespace firmware {
 
-base::Status IoService::Configure(const drive_link::CardConfig& config) {
-  if (config.protocol == drive_link::Protocol::kEtherNetIp) return Start();
+base::Status IoService::Configure(const config::CardConfig& config) {
+  if (config.protocol == config::Protocol::kEtherNetIp) return Start();
   Stop();
   return base::OkStatus();
 }

@@ -17,7 +17,7 @@
 #include "base/status.h"
 #include "cip/connection_manager.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "event_loop.h"
 #include "hal/clock.h"
 #include "lwip/udp.h"
@@ -47,7 +47,7 @@ class IoService final : public Service, public ConfigurableService {
   IoService(const IoService&) = delete;
   IoService& operator=(const IoService&) = delete;
 
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
   base::Status Start();
   void Stop();
   bool running() const { return pcb_ != nullptr; }

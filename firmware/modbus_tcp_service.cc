@@ -31,9 +31,9 @@ modbus::Ipv4Address PeerAddress(const tcp_pcb* pcb) {
 
 ModbusTcpService::~ModbusTcpService() { Stop(); }
 
-base::Status ModbusTcpService::Configure(const drive_link::CardConfig& config) {
+base::Status ModbusTcpService::Configure(const config::CardConfig& config) {
   core_.Configure(config);
-  if (config.protocol == drive_link::Protocol::kModbusTcp) return Start();
+  if (config.protocol == config::Protocol::kModbusTcp) return Start();
   Stop();
   return base::OkStatus();
 }

@@ -23,7 +23,7 @@
 
 #include "base/status.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "hal/clock.h"
 #include "modbus/server.h"
 #include "tcp_keepalive.h"
@@ -60,7 +60,7 @@ class ModbusTcpService final : public StreamTcpService<ModbusTcpService, modbus:
   ~ModbusTcpService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Hands the configuration to the server and opens (c500 = 0) or closes (c500 = 1) the port.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
 
  private:
   friend TcpService;

@@ -435,7 +435,7 @@ void WebApplication::Monitor(const Call& call) {
   Json(call.response, HttpStatus::kOk, [&](web::JsonWriter& json) {
     const WebCardStatus& status = devices_.status;
     json.BeginObject().Key("link").String(status.drive_link_state()).Key("model").String(status.drive_model());
-    json.Key("protocol").String(status.config().protocol == drive_link::Protocol::kModbusTcp ? "modbus" : "ethernetip");
+    json.Key("protocol").String(status.config().protocol == config::Protocol::kModbusTcp ? "modbus" : "ethernetip");
     json.Key("registers").BeginObject();
     std::array<char, 4> name{};
     for (std::size_t i = 0; i < kMonitorRegisterCount; ++i) {
@@ -466,8 +466,8 @@ void WebApplication::Monitor(const Call& call) {
 
 void WebApplication::Network(const Call& call) {
   Json(call.response, HttpStatus::kOk, [&](web::JsonWriter& json) {
-    const drive_link::CardConfig& config = devices_.status.config();
-    const drive_link::CardStatus card = devices_.status.card_status();
+    const config::CardConfig& config = devices_.status.config();
+    const config::CardStatus card = devices_.status.card_status();
     std::array<char, 17> mac{};
     static constexpr char kHex[] = "0123456789abcdef";
     for (std::size_t i = 0; i < card.mac.size(); ++i) {
@@ -501,7 +501,7 @@ void WebApplication::Network(const Call& call) {
 
 void WebApplication::ModbusScanner(const Call& call) {
   Json(call.response, HttpStatus::kOk, [&](web::JsonWriter& json) {
-    const drive_link::CardConfig& config = devices_.status.config();
+    const config::CardConfig& config = devices_.status.config();
     json.BeginObject().Key("menus").BeginObject().Key("c001_c006");
     WordArray(json, config.command_menus);
     json.Key("c021_c026");

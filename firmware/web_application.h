@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "cip/file_object.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/register_access.h"
 #include "event_loop.h"
 #include "web/access_control.h"
@@ -25,8 +25,8 @@ namespace firmware {
 class WebCardStatus {
  public:
   virtual ~WebCardStatus() = default;
-  virtual const drive_link::CardConfig& config() const = 0;       // the configuration in force
-  virtual drive_link::CardStatus card_status() const = 0;         // c502/c503, MAC, c524-c535, c536
+  virtual const config::CardConfig& config() const = 0;       // the configuration in force
+  virtual config::CardStatus card_status() const = 0;         // c502/c503, MAC, c524-c535, c536
   virtual const char* drive_link_state() const = 0;               // drive_link::LinkStateName
   virtual const char* drive_model() const = 0;                    // "vf-mb1", "vf-s15" or "unknown"
   virtual void WriteLeds(web::JsonWriter& json) const = 0;        // {"ms":..,"ns":..,"lnk_l":..,"lnk_r":..}

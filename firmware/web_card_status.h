@@ -32,8 +32,8 @@ class CardWebStatus final : public WebCardStatus {
     web_service_ = &service;
   }
 
-  const drive_link::CardConfig& config() const override { return s_.proxy.config(); }
-  drive_link::CardStatus card_status() const override { return s_.publisher.board_data().status; }
+  const config::CardConfig& config() const override { return s_.proxy.config(); }
+  config::CardStatus card_status() const override { return s_.publisher.board_data().status; }
   const char* drive_link_state() const override;
   const char* drive_model() const override;
   void WriteLeds(web::JsonWriter& json) const override;

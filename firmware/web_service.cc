@@ -17,7 +17,7 @@ static_assert(web::kHttpReceiveSlack >= TCP_WND / 2, "the receive buffer needs h
 
 WebService::~WebService() { Stop(); }
 
-base::Status WebService::Configure(const drive_link::CardConfig& config) {
+base::Status WebService::Configure(const config::CardConfig& config) {
   if (config.web_server) return Start();
   Stop();
   return base::OkStatus();

@@ -20,7 +20,7 @@
 
 #include "base/status.h"
 #include "configurable_service.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "hal/clock.h"
 #include "tcp_keepalive.h"
 #include "stream_tcp_service.h"
@@ -52,7 +52,7 @@ class WebService final : public StreamTcpService<WebService, web::HttpServer, we
   ~WebService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c554 = 1) or closes (c554 = 0) the port.
-  base::Status Configure(const drive_link::CardConfig& config) override;
+  base::Status Configure(const config::CardConfig& config) override;
 
  private:
   friend TcpService;

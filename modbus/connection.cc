@@ -191,7 +191,7 @@ void Connection::BeginDrive(const Request& request, hal::Micros now) {
   const ExceptionCode check =
       request.function == fc::kReadHoldingRegisters
           ? CheckDriveRead(request.read_address, request.read_count)
-          : CheckDriveWrite(request.write_address, request.write_count, shared_->scanner,
+          : CheckDriveWrite(request.write_address, request.values(), shared_->drive,
                             ControlLockedFor(shared_->config, peer_));
   if (check != ExceptionCode::kNone) return AnswerException(request.function, check);
   request_ = request;

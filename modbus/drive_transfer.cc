@@ -44,15 +44,15 @@ ExceptionCode CheckDriveRead(std::uint16_t first, std::uint16_t count) {
   return LastCommunicationNumber(first, count) > 0xFFFF ? ExceptionCode::kIllegalDataAddress : ExceptionCode::kNone;
 }
 
-ExceptionCode CheckDriveWrite(std::uint16_t first, std::uint16_t count, const drive_link::ScannerImage& scanner,
-                              bool control_locked) {
-  if (!drive_link::reg::HasDecimalLastDigit(first)) return ExceptionCode::kIllegalDataAddress;
+ExceptionCode CheckDriveWrite(std::uint16_t first, std::span<const std::uint16_t> values,
+                              const drive_link::DriveRegisters& drive, bool control_locked) {
+  const auto count = static_cast<std::uint16_t>(values.size());
   if (LastCommunicationNumber(first, count) > 0xFFFF) return ExceptionCode::kIllegalDataAddress;
   std::uint32_t number = first;
   for (std::uint16_t i = 0; i < count; ++i, number = NextCommunicationNumber(number)) {
     const auto n = static_cast<std::uint16_t>(number);
-    if (drive_link::reg::IsMonitorNumber(n)) return ExceptionCode::kIllegalDataAddress;
-    if (scanner.IsScannerTarget(n)) return ExceptionCode::kIllegalDataAddress;
+    const ExceptionCode refusal = ExceptionForWriteError(drive.CheckWrite(n, values[i]));
+    if (refusal == ExceptionCode::kIllegalDataAddress) return refusal;
     if (control_locked && drive_link::reg::IsControlRegister(n)) return ExceptionCode::kIllegalDataAddress;
   }
   return ExceptionCode::kNone;

@@ -39,7 +39,7 @@ void ReadInputWords(const drive_link::ScannerImage& scanner, std::uint16_t addre
 
 }  // namespace
 
-ExceptionCode IoScanningAccess(const drive_link::CardConfig& config, const Ipv4Address& peer) {
+ExceptionCode IoScanningAccess(const config::CardConfig& config, const Ipv4Address& peer) {
   if (!config.io_scanning) return ExceptionCode::kIllegalFunction;
   if (config.modbus_master != kAnyMaster && config.modbus_master != peer) {
     return ExceptionCode::kIllegalFunction;
@@ -47,7 +47,7 @@ ExceptionCode IoScanningAccess(const drive_link::CardConfig& config, const Ipv4A
   return ExceptionCode::kNone;
 }
 
-bool ControlLockedFor(const drive_link::CardConfig& config, const Ipv4Address& peer) {
+bool ControlLockedFor(const config::CardConfig& config, const Ipv4Address& peer) {
   return config.io_scanning && config.modbus_master != kAnyMaster && config.modbus_master != peer;
 }
 

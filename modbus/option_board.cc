@@ -28,8 +28,8 @@ std::uint16_t LinkStateCode(drive_link::LinkState state) {
 
 // The whole map, in address order (docs/modbus.md "Unit 251" has the same table).
 Map BuildMap(const OptionBoardView& view) {
-  const drive_link::CardConfig& config = view.config;
-  const drive_link::CardStatus& status = view.data.status;
+  const config::CardConfig& config = view.config;
+  const config::CardStatus& status = view.data.status;
   Map map{};
   map[0] = view.data.firmware_version;
   map[1] = static_cast<std::uint16_t>(config.protocol);      // c500

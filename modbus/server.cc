@@ -12,7 +12,7 @@ Server::Server(drive_link::DriveRegisters& drive, drive_link::ScannerImage& scan
   Configure(shared_.config);
 }
 
-void Server::Configure(const drive_link::CardConfig& config) {
+void Server::Configure(const config::CardConfig& config) {
   shared_.config = config;
   shared_.loss.Configure(config.timeout_tenths, config.io_scanning);
 }

@@ -2,8 +2,9 @@
 #include "cip/drive/drive_profile.h"
 
 #include "cip/drive/drive_units.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/drive_registers.h"
+#include "drive_link/register_access.h"
 
 namespace cip::drive {
 
@@ -59,8 +60,8 @@ CommandWrites CommandRegisters(const DriveCommand& command, const DriveContext& 
       out.fa07 = command.native_frequency;
       std::uint8_t mask = AllWords(command.scanner_count);
       for (std::size_t i = 0; i < drive_link::kScannerWordCount; ++i) {
-        const std::uint16_t target = drive_link::CommandMenuTarget(context.command_menus[i]);
-        if (target == reg::kFa06 || target == reg::kFa07) mask = static_cast<std::uint8_t>(mask & ~(1u << i));
+        const std::uint16_t target = config::CommandMenuTarget(context.command_menus[i]);
+        if (drive_link::IsDriveCommandRegister(target)) mask = static_cast<std::uint8_t>(mask & ~(1u << i));
       }
       out.scanner_mask = mask;
       out.scanner_words = command.scanner_words;

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "drive_link/drive_registers.h"
+#include "drive_link/register_access.h"
 
 namespace cip::drive {
 
@@ -41,7 +42,7 @@ DriveProfileRuntime::DriveProfileRuntime(const DriveProfileLinks& links, const D
 
 DriveProfileRuntime::~DriveProfileRuntime() { links_.registers.Cancel(*this); }
 
-void DriveProfileRuntime::SetCardConfig(const drive_link::CardConfig& config) { config_ = config; }
+void DriveProfileRuntime::SetCardConfig(const config::CardConfig& config) { config_ = config; }
 
 // ---- Commands ------------------------------------------------------------------------------------------
 
@@ -129,8 +130,8 @@ bool DriveProfileRuntime::ScannerOutputOwned() const {
 
 bool DriveProfileRuntime::ScannerTargetsDriveCommand() const {
   for (std::uint16_t menu : config_.command_menus) {
-    const std::uint16_t target = drive_link::CommandMenuTarget(menu);
-    if (target == reg::kFa06 || target == reg::kFa07) return true;
+    const std::uint16_t target = config::CommandMenuTarget(menu);
+    if (drive_link::IsDriveCommandRegister(target)) return true;
   }
   return false;
 }

@@ -78,7 +78,7 @@ TEST_F(DriveAssembliesTest, ASecondCommandOutputOwnerConflicts) {
 }
 
 TEST_F(DriveAssembliesTest, ScannerOutputsWithoutDriveCommandMenusCoexistWithACommandOwner) {
-  drive_link::CardConfig config;
+  config::CardConfig config;
   config.command_menus = {0, 0, 0, 0, 0, 0};  // no c00n targets FA06/FA07
   card_.runtime.SetCardConfig(config);
   card_.ownership.owned = {21};
@@ -276,7 +276,7 @@ TEST_F(DriveAssembliesTest, NativeOfSixWordsWritesScannerWords3And4Only) {
 }
 
 TEST_F(DriveAssembliesTest, NativeScannerMaskFollowsTheMenus) {
-  drive_link::CardConfig config;
+  config::CardConfig config;
   config.command_menus = {13, 14, 0, 0, 0, 1};  // acc, dec, -, -, -, FA06
   card_.runtime.SetCardConfig(config);
   Consume(100, Hex("00 00 00 00 01 00 02 00 03 00 04 00 05 00 06 00"));

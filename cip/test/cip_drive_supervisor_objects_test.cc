@@ -156,7 +156,7 @@ TEST_F(ControlSupervisorObjectTest, CommandsAreRefusedWhileAConnectionOwnsTheCom
   // 102 owned: its scanner word 1 is FA06 with the factory c001 = 1.
   card_.ownership.owned = {102};
   EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 10 00"));
-  drive_link::CardConfig config;
+  config::CardConfig config;
   config.command_menus = {13, 14, 0, 0, 0, 0};
   card_.runtime.SetCardConfig(config);
   EXPECT_EQ(card_.Ask(Hex("10 03 20 29 24 01 30 03 01")), Hex("90 00 00 00"));
@@ -276,7 +276,7 @@ TEST_F(AcDcDriveObjectTest, SpeedActualWaitsForFd00) {
   EXPECT_EQ(card_.Ask(Hex("0E 03 20 2A 24 01 30 07")), Hex("8E 00 00 00 08 07"));  // 1800 rpm
   EXPECT_EQ(card_.deferrals, 1);
   EXPECT_EQ(card_.registers.log, (Accesses{Read(0xFD00)}));
-  drive_link::CardConfig config;
+  config::CardConfig config;
   config.pole_pairs = 1;  // 2 poles: 3600 rpm at 60 Hz
   card_.runtime.SetCardConfig(config);
   EXPECT_EQ(card_.Ask(Hex("0E 03 20 2A 24 01 30 07")), Hex("8E 00 00 00 10 0E"));

@@ -15,6 +15,7 @@
 
 #include "drive_link/drive_registers.h"
 #include "drive_link/register_access.h"
+#include "drive_link_part_fakes.h"
 
 namespace drive_link::test {
 
@@ -34,6 +35,10 @@ class ScriptedDriveRegisters final : public DriveRegisters {
   base::Result<AccessToken> Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
                                   AccessListener& listener) override {
     return Start(Access{true, number, value, mode}, listener);
+  }
+  // The register proxy's own check (CheckRegisterWrite) on `rules`.
+  AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const override {
+    return CheckRegisterWrite(number, value, rules);
   }
   void Cancel(AccessListener& listener) override {
     ++cancels;
@@ -83,6 +88,7 @@ class ScriptedDriveRegisters final : public DriveRegisters {
 
   // The inverter as CompleteAll sees it: a number missing here is kNoSuchRegister; a write stores.
   std::map<std::uint16_t, std::uint16_t> registers;
+  FakeAccessRules rules;  // what CheckWrite knows
   std::map<std::uint16_t, AccessError> errors;  // an access to one of these numbers fails so
   int busy_next = 0;       // the next n Read/Write calls return kResourceExhausted (pool full)
   bool link_down = false;  // Read/Write return kFailedPrecondition

@@ -42,11 +42,11 @@ class RecordingListener final : public AccessListener {
 
 class ConfigRecorder final : public ConfigListener {
  public:
-  void OnConfigLoaded(const ParsedConfig& parsed) override {
+  void OnConfigLoaded(const config::ParsedConfig& parsed) override {
     loads.push_back(parsed);
     if (on_load) on_load();
   }
-  std::vector<ParsedConfig> loads;
+  std::vector<config::ParsedConfig> loads;
   std::function<void()> on_load;
 };
 

@@ -58,10 +58,10 @@ TEST_F(RegisterProxyTest, ReadsTheConfigurationAfterTheStartupSilence) {
   EXPECT_EQ(loaded_at, kStart + kSecond + kLoadTime);
   EXPECT_TRUE(proxy_->config_loaded());
   EXPECT_EQ(proxy_->counters().config_loads, 1U);
-  const ParsedConfig& parsed = config_.loads[0];
+  const config::ParsedConfig& parsed = config_.loads[0];
   EXPECT_EQ(parsed.problems_total, 0U);
   // The seed's factory settings, as the simulated inverter holds them.
-  const CardConfig& c = proxy_->config();
+  const config::CardConfig& c = proxy_->config();
   EXPECT_EQ(c.command_menus, (std::array<std::uint16_t, 6>{1, 3, 0, 0, 0, 0}));
   EXPECT_EQ(c.monitor_menus, (std::array<std::uint16_t, 6>{1, 2, 0, 0, 0, 0}));
   EXPECT_EQ(c.loss_delay_tenths, 0);
@@ -81,11 +81,11 @@ TEST_F(RegisterProxyTest, ReadsTheConfigurationAfterTheStartupSilence) {
 TEST_F(RegisterProxyTest, ReportsAReservedMenuAndUsesTheFactoryDefault) {
   SetEeprom({{0xC001, 4}, {0xC022, 24}, {0xC081, 'V'}, {0xC082, 'F'}});
   StartLoaded();
-  const ParsedConfig& parsed = proxy_->parsed_config();
+  const config::ParsedConfig& parsed = proxy_->parsed_config();
   ASSERT_EQ(parsed.problem_count, 2U);
   EXPECT_EQ(parsed.problems[0].number, 0xC001);
   EXPECT_EQ(parsed.problems[0].value, 4);
-  EXPECT_EQ(parsed.problems[0].kind, ConfigProblem::Kind::kReservedMenu);
+  EXPECT_EQ(parsed.problems[0].kind, config::ConfigProblem::Kind::kReservedMenu);
   EXPECT_EQ(parsed.problems[1].number, 0xC022);
   EXPECT_EQ(parsed.problems[1].value, 24);
   EXPECT_EQ(proxy_->config().command_menus[0], 1);  // FA06, not the reserved menu
@@ -414,7 +414,7 @@ TEST_F(RegisterProxyTest, PoolLimitOrderAndCancel) {
 TEST_F(RegisterProxyTest, F899ReloadsTheConfigurationAfterTheResetSilence) {
   SetEeprom({{kAcc, 10}, {kDec, 10}});
   StartLoaded();
-  CardStatus status;
+  config::CardStatus status;
   status.ip = {192, 168, 1, 12};
   proxy_->SetCardStatus(status);
   proxy_->SetCommandWords(kRun60Hz);
@@ -481,7 +481,7 @@ TEST_F(RegisterProxyTest, E23OnSilenceThenRecoveryReloadsAndWritesTheWordsAgain)
 TEST_F(RegisterProxyTest, WritesBackWhatTheCardOwnsWhenItChanges) {
   SetEeprom({{kAcc, 10}});
   StartLoaded();
-  CardStatus status;
+  config::CardStatus status;
   status.port_rates = {3, 0};
   status.mac = {0x02, 0x00, 0x5E, 0x10, 0x20, 0x30};
   status.ip = {192, 168, 1, 12};

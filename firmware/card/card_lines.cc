@@ -7,13 +7,13 @@
 namespace firmware {
 namespace {
 
-const char* ModeName(drive_link::IpMode mode) {
+const char* ModeName(config::IpMode mode) {
   switch (mode) {
-    case drive_link::IpMode::kManual:
+    case config::IpMode::kManual:
       return "manual";
-    case drive_link::IpMode::kBootp:
+    case config::IpMode::kBootp:
       return "bootp";
-    case drive_link::IpMode::kDhcp:
+    case config::IpMode::kDhcp:
       return "dhcp";
   }
   return "?";

@@ -208,13 +208,13 @@ void ReportPools(const Card& card, ReportSink& out) {
   ReportPool(out, "parameter_writes", card.parameter_writer().queue_pool());
 }
 
-const char* ProblemKindName(drive_link::ConfigProblem::Kind kind) {
+const char* ProblemKindName(config::ConfigProblem::Kind kind) {
   switch (kind) {
-    case drive_link::ConfigProblem::Kind::kReservedMenu:
+    case config::ConfigProblem::Kind::kReservedMenu:
       return "reserved-menu";
-    case drive_link::ConfigProblem::Kind::kOutOfRange:
+    case config::ConfigProblem::Kind::kOutOfRange:
       return "out-of-range";
-    case drive_link::ConfigProblem::Kind::kUnreadable:
+    case config::ConfigProblem::Kind::kUnreadable:
       return "unreadable";
   }
   return "?";
@@ -309,8 +309,8 @@ void ReportCardStats(const Card& card, ReportSink& out) {
 }
 
 void ReportCardConfig(const Card& card, ReportSink& out) {
-  const drive_link::ParsedConfig& parsed = card.proxy().parsed_config();
-  const drive_link::CardConfig& c = parsed.config;
+  const config::ParsedConfig& parsed = card.proxy().parsed_config();
+  const config::CardConfig& c = parsed.config;
   out.Value({"loaded"}, card.proxy().config_loaded() ? 1 : 0);
   hal::TextLine line;
   line.Text("command_menus=");
@@ -346,7 +346,7 @@ void ReportCardConfig(const Card& card, ReportSink& out) {
   out.Value({"cmod"}, c.cmod);
   out.Value({"fmod"}, c.fmod);
   for (std::size_t i = 0; i < parsed.problem_count; ++i) {
-    const drive_link::ConfigProblem& problem = parsed.problems[i];
+    const config::ConfigProblem& problem = parsed.problems[i];
     line.Clear();
     line.Text("problem=");
     Hex4(line, problem.number);

@@ -51,7 +51,7 @@ class BootpAddressingTest : public AddressingHarness {
   // Configures BOOTP and returns the first BOOTREQUEST (sent from Configure itself).
   SentUdp ConfigureBootp() {
     start_ = Now();
-    EXPECT_TRUE(addressing_.Configure(ModeConfig(drive_link::IpMode::kBootp)).ok());
+    EXPECT_TRUE(addressing_.Configure(ModeConfig(config::IpMode::kBootp)).ok());
     Step();
     const auto udp = UdpSince();
     EXPECT_EQ(udp.size(), 1u);

@@ -108,7 +108,7 @@ class DhcpAddressingTest : public AddressingHarness {
 
   // Configures DHCP with kName and runs one pass: DHCP starts from Poll. Returns the DISCOVER.
   Bytes ConfigureDhcp(const std::string& name = kName) {
-    EXPECT_TRUE(addressing_.Configure(ModeConfig(drive_link::IpMode::kDhcp, name)).ok());
+    EXPECT_TRUE(addressing_.Configure(ModeConfig(config::IpMode::kDhcp, name)).ok());
     Step();
     const auto messages = DhcpSince();
     EXPECT_EQ(messages.size(), 1u);
@@ -134,7 +134,7 @@ class DhcpAddressingTest : public AddressingHarness {
 TEST_F(DhcpAddressingTest, Discover_ClientIdIsType0PlusDeviceName_HostNameOption12) {
   const Bytes discover = ConfigureDhcp();
   EXPECT_EQ(addressing_.phase(), AddressPhase::kAcquiring);
-  EXPECT_EQ(addressing_.mode(), drive_link::IpMode::kDhcp);
+  EXPECT_EQ(addressing_.mode(), config::IpMode::kDhcp);
   const auto frames = UdpSince();
   ASSERT_EQ(frames.size(), 1u);
   const SentUdp udp = ParseUdp(frames[0].bytes);

@@ -162,18 +162,18 @@ inline SentUdp ParseUdp(std::span<const std::uint8_t> f) {
   return u;
 }
 
-inline drive_link::CardConfig ManualConfig(std::array<std::uint8_t, 4> ip, std::array<std::uint8_t, 4> mask,
+inline config::CardConfig ManualConfig(std::array<std::uint8_t, 4> ip, std::array<std::uint8_t, 4> mask,
                                            std::array<std::uint8_t, 4> gateway = {}) {
-  drive_link::CardConfig config;
-  config.ip_mode = drive_link::IpMode::kManual;
+  config::CardConfig config;
+  config.ip_mode = config::IpMode::kManual;
   config.ip = ip;
   config.netmask = mask;
   config.gateway = gateway;
   return config;
 }
 
-inline drive_link::CardConfig ModeConfig(drive_link::IpMode mode, const std::string& name = "") {
-  drive_link::CardConfig config;
+inline config::CardConfig ModeConfig(config::IpMode mode, const std::string& name = "") {
+  config::CardConfig config;
   config.ip_mode = mode;
   std::copy_n(name.begin(), std::min<std::size_t>(name.size(), 16), config.device_name.begin());
   return config;

@@ -11,7 +11,7 @@ namespace {
 constexpr std::uint32_t kAddress = 0xC0A8010C;  // 192.168.1.12
 constexpr std::uint32_t kOtherIp = 0xC0A8011E;  // 192.168.1.30
 
-drive_link::CardConfig SeedConfig() { return ManualConfig({192, 168, 1, 12}, {255, 255, 255, 0}, {192, 168, 1, 1}); }
+config::CardConfig SeedConfig() { return ManualConfig({192, 168, 1, 12}, {255, 255, 255, 0}, {192, 168, 1, 1}); }
 
 // Another host answering for (or announcing) the card's address.
 Bytes ConflictingReply() {
@@ -308,8 +308,8 @@ TEST_F(ManualAddressingTest, SamePlanAgain_NoRestartNoProbe) {
   RunFor(5 * kSec);
   const AddressingCounters before = addressing_.counters();
   const std::size_t mark = sent_.size();
-  drive_link::CardConfig same = SeedConfig();
-  same.protocol = drive_link::Protocol::kEtherNetIp;  // not part of the addressing plan
+  config::CardConfig same = SeedConfig();
+  same.protocol = config::Protocol::kEtherNetIp;  // not part of the addressing plan
   same.timeout_tenths = 50;
   ASSERT_TRUE(addressing_.Configure(same).ok());
   ASSERT_TRUE(addressing_.Configure(SeedConfig()).ok());
@@ -339,7 +339,7 @@ TEST_F(ManualAddressingTest, ChangedPlan_RestartsWithTheNewAddress) {
   EXPECT_EQ(addressing_.counters().address_changes, 3u);  // old in, old out, new in
 
   // A change of the device name alone restarts too (it is the DHCP host name).
-  drive_link::CardConfig renamed = ManualConfig({192, 168, 1, 20}, {255, 255, 255, 0});
+  config::CardConfig renamed = ManualConfig({192, 168, 1, 20}, {255, 255, 255, 0});
   renamed.device_name[0] = 'X';
   ASSERT_TRUE(addressing_.Configure(renamed).ok());
   EXPECT_EQ(addressing_.counters().restarts, 3u);
@@ -353,7 +353,7 @@ TEST_F(ManualAddressingTest, ConflictThenRestartWithAnotherPlan_NoLongerDuplicat
   RunFor(250 * kMs);
   Receive(ConflictingReply());
   ASSERT_TRUE(addressing_.duplicate_detected());
-  ASSERT_TRUE(addressing_.Configure(ModeConfig(drive_link::IpMode::kBootp)).ok());
+  ASSERT_TRUE(addressing_.Configure(ModeConfig(config::IpMode::kBootp)).ok());
   EXPECT_EQ(addressing_.phase(), AddressPhase::kAcquiring);
   EXPECT_FALSE(addressing_.duplicate_detected());
   EXPECT_EQ(addressing_.last_conflict().activity, net::AcdActivity::kProbeIpv4Address);

@@ -43,8 +43,8 @@ class RecordingLeds final : public hal::Leds {
   std::array<LedColor, hal::kLedCount> colors{};
 };
 
-drive_link::CardConfig ProtocolConfig(drive_link::Protocol protocol) {
-  drive_link::CardConfig config;
+config::CardConfig ProtocolConfig(config::Protocol protocol) {
+  config::CardConfig config;
   config.protocol = protocol;
   return config;
 }
@@ -59,7 +59,7 @@ class CardIndicatorsTest : public drive_link::test::RegisterProxyFixture {
   ~CardIndicatorsTest() override { netif_.SetObserver(nullptr); }
 
   // The indicators from now on (the power-up test starts now), for `protocol`.
-  void Build(drive_link::Protocol protocol) {
+  void Build(config::Protocol protocol) {
     start_ = Now();
     const IndicatorSources sources{port_, *proxy_, addressing_, &connections_};
     indicators_ = std::make_unique<CardIndicators>(sources, leds_, start_);
@@ -126,7 +126,7 @@ TEST_F(CardIndicatorsTest, PowerUpTestOnAllFourLeds_ThenModbusReadyAndLinkColour
   StartLoaded();
   GiveAddress();
   port_.SetSpeed(PortId::kRight, hal::LinkSpeed::k10Mbps);
-  Build(drive_link::Protocol::kModbusTcp);
+  Build(config::Protocol::kModbusTcp);
 
   struct Sample {
     hal::Micros at;
@@ -172,7 +172,7 @@ TEST_F(CardIndicatorsTest, PowerUpTestOnAllFourLeds_ThenModbusReadyAndLinkColour
 
 TEST_F(CardIndicatorsTest, EtherNetIpNotConfigured_MsGreenFlashing_NsOffWithoutAddress) {
   Start();  // the configuration has not been read from the inverter yet
-  Build(drive_link::Protocol::kEtherNetIp);
+  Build(config::Protocol::kEtherNetIp);
   const net::LedInputs in = indicators_->Gather();
   EXPECT_FALSE(in.configured);
   EXPECT_FALSE(in.has_address);
@@ -187,7 +187,7 @@ TEST_F(CardIndicatorsTest, EtherNetIpNotConfigured_MsGreenFlashing_NsOffWithoutA
 TEST_F(CardIndicatorsTest, ModbusNotReadyWithAddress_MsGreenFlashing) {
   Start();
   GiveAddress();
-  Build(drive_link::Protocol::kModbusTcp);
+  Build(config::Protocol::kModbusTcp);
   EXPECT_EQ(At(Led::kModuleStatus, TestEnd() + 100 * kMilli), kGreen);
   EXPECT_EQ(At(Led::kModuleStatus, TestEnd() + 600 * kMilli), kOff);
   EXPECT_EQ(At(Led::kNetworkStatus, TestEnd() + 600 * kMilli), kGreen);
@@ -195,14 +195,14 @@ TEST_F(CardIndicatorsTest, ModbusNotReadyWithAddress_MsGreenFlashing) {
 
 TEST_F(CardIndicatorsTest, BootpRunning_ModbusNsFlashesFiveTimes_EtherNetIpNsOff) {
   StartLoaded();
-  ASSERT_TRUE(addressing_.Configure(ModeConfig(drive_link::IpMode::kBootp)).ok());
-  Build(drive_link::Protocol::kModbusTcp);
+  ASSERT_TRUE(addressing_.Configure(ModeConfig(config::IpMode::kBootp)).ok());
+  Build(config::Protocol::kModbusTcp);
   EXPECT_TRUE(indicators_->Gather().acquiring_address);
   ExpectCountedFlashes(Led::kNetworkStatus, TestEnd(), 5, kGreen);  // period 2.8 s
   EXPECT_EQ(Color(Led::kModuleStatus), kOff);                         // Modbus MS: no address
 
   // The same condition under EtherNet/IP: NS off (no address), MS green (configured).
-  ASSERT_TRUE(indicators_->Configure(ProtocolConfig(drive_link::Protocol::kEtherNetIp)).ok());
+  ASSERT_TRUE(indicators_->Configure(ProtocolConfig(config::Protocol::kEtherNetIp)).ok());
   AdvanceTo(Now() + 1);
   EXPECT_EQ(Color(Led::kNetworkStatus), kOff);
   EXPECT_EQ(Color(Led::kModuleStatus), kGreen);
@@ -211,7 +211,7 @@ TEST_F(CardIndicatorsTest, BootpRunning_ModbusNsFlashesFiveTimes_EtherNetIpNsOff
 class DuplicateIndicatorsTest : public CardIndicatorsTest {
  protected:
   // Manual address with ACD; another host answers one of the probes during the power-up test.
-  void ConflictDuringTest(drive_link::Protocol protocol) {
+  void ConflictDuringTest(config::Protocol protocol) {
     StartLoaded();
     ASSERT_TRUE(addressing_.Configure(ManualConfig({192, 168, 1, 12}, {255, 255, 255, 0})).ok());
     Build(protocol);
@@ -225,12 +225,12 @@ class DuplicateIndicatorsTest : public CardIndicatorsTest {
 };
 
 TEST_F(DuplicateIndicatorsTest, Modbus_NsFlashesFourTimes) {
-  ConflictDuringTest(drive_link::Protocol::kModbusTcp);
+  ConflictDuringTest(config::Protocol::kModbusTcp);
   ExpectCountedFlashes(Led::kNetworkStatus, TestEnd(), 4, kGreen);  // period 2.4 s
 }
 
 TEST_F(DuplicateIndicatorsTest, EtherNetIp_NsRedSteady) {
-  ConflictDuringTest(drive_link::Protocol::kEtherNetIp);
+  ConflictDuringTest(config::Protocol::kEtherNetIp);
   EXPECT_EQ(At(Led::kNetworkStatus, TestEnd()), kRed);
   EXPECT_EQ(At(Led::kNetworkStatus, TestEnd() + 3 * kSecond), kRed);
   EXPECT_EQ(Color(Led::kModuleStatus), kGreen);
@@ -239,7 +239,7 @@ TEST_F(DuplicateIndicatorsTest, EtherNetIp_NsRedSteady) {
 TEST_F(CardIndicatorsTest, EtherNetIpConnections_NoneEstablishedTimedOut) {
   StartLoaded();
   GiveAddress();
-  Build(drive_link::Protocol::kEtherNetIp);
+  Build(config::Protocol::kEtherNetIp);
   // No connection: NS green flashing.
   EXPECT_EQ(At(Led::kNetworkStatus, TestEnd() + 100 * kMilli), kGreen);
   EXPECT_EQ(At(Led::kNetworkStatus, TestEnd() + 600 * kMilli), kOff);

@@ -44,7 +44,7 @@ class EipServiceTest : public test::LwipPairTest {
  protected:
   void SetUp() override {
     StartNetifs();
-    config_.protocol = drive_link::Protocol::kEtherNetIp;
+    config_.protocol = config::Protocol::kEtherNetIp;
     ASSERT_TRUE(service_.Configure(config_).ok());
     Pump();
   }
@@ -77,7 +77,7 @@ class EipServiceTest : public test::LwipPairTest {
     return written;
   }
 
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   cip::test::FakeCard card_;
   EipService service_{card_.cip.encapsulation(), clock()};
 };
@@ -269,7 +269,7 @@ TEST_F(EipServiceTest, BroadcastListIdentity_SentWhenItsDelayIsDue) {
 TEST_F(EipServiceTest, ModbusConfiguration_ClosesBothPorts) {
   TcpTestClient& before = Connect(kPort);
   ASSERT_TRUE(before.connected);
-  config_.protocol = drive_link::Protocol::kModbusTcp;
+  config_.protocol = config::Protocol::kModbusTcp;
   ASSERT_TRUE(service_.Configure(config_).ok());
   Pump();
   EXPECT_FALSE(service_.listening());
@@ -283,9 +283,9 @@ TEST_F(EipServiceTest, ModbusConfiguration_ClosesBothPorts) {
 }
 
 TEST_F(EipServiceTest, EtherNetIpConfigurationAgain_OpensThePorts) {
-  config_.protocol = drive_link::Protocol::kModbusTcp;
+  config_.protocol = config::Protocol::kModbusTcp;
   ASSERT_TRUE(service_.Configure(config_).ok());
-  config_.protocol = drive_link::Protocol::kEtherNetIp;
+  config_.protocol = config::Protocol::kEtherNetIp;
   ASSERT_TRUE(service_.Configure(config_).ok());
   EXPECT_TRUE(service_.listening());
   TcpTestClient& client = Connect(kPort);

@@ -30,7 +30,7 @@ class IoServiceTest : public test::LwipPairTest {
  protected:
   void SetUp() override {
     StartNetifs();
-    config_.protocol = drive_link::Protocol::kEtherNetIp;
+    config_.protocol = config::Protocol::kEtherNetIp;
     ASSERT_TRUE(service_.Configure(config_).ok());
     Pump();
   }
@@ -54,7 +54,7 @@ class IoServiceTest : public test::LwipPairTest {
     return reply;
   }
 
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   ConnectionCard card_;
   FixedTtl ttl_;
   IoService service_{card_.cm, clock(), ttl_};
@@ -127,7 +127,7 @@ TEST_F(IoServiceTest, ModbusConfigurationClosesThePort) {
   UdpTestPeer& peer = OpenUdp(kPeerPort);
   const Bytes reply = Open();
   const std::uint32_t o_to_t = ConnectionCard::OtoTId(reply);
-  config_.protocol = drive_link::Protocol::kModbusTcp;
+  config_.protocol = config::Protocol::kModbusTcp;
   ASSERT_TRUE(service_.Configure(config_).ok());
   EXPECT_FALSE(service_.running());
   Pump();
@@ -136,7 +136,7 @@ TEST_F(IoServiceTest, ModbusConfigurationClosesThePort) {
   EXPECT_TRUE(card_.io.consumed.empty());
   EXPECT_EQ(service_.counters().received, 0U);
 
-  config_.protocol = drive_link::Protocol::kEtherNetIp;
+  config_.protocol = config::Protocol::kEtherNetIp;
   ASSERT_TRUE(service_.Configure(config_).ok());
   EXPECT_TRUE(service_.running());
 }

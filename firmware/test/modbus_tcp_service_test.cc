@@ -34,7 +34,7 @@ class ModbusTcpServiceTest : public test::LwipPairTest {
 
   TestClient& Connect() { return LwipPairTest::Connect(502); }
 
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   modbus::test::ServerHarness h_{[] {
     modbus::ServerOptions options;
     options.idle_timeout = 10 * hal::kMicrosPerSecond;
@@ -180,8 +180,8 @@ TEST_F(ModbusTcpServiceTest, IdleClient_ClosedWithFin) {
 
 TEST_F(ModbusTcpServiceTest, EtherNetIpSelected_PortClosedAndClientsReset) {
   TestClient& client = Connect();
-  drive_link::CardConfig ethernet_ip = config_;
-  ethernet_ip.protocol = drive_link::Protocol::kEtherNetIp;
+  config::CardConfig ethernet_ip = config_;
+  ethernet_ip.protocol = config::Protocol::kEtherNetIp;
   ASSERT_TRUE(service_.Configure(ethernet_ip).ok());
   Pump();
   EXPECT_FALSE(service_.listening());

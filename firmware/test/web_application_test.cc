@@ -38,8 +38,8 @@ class FakeScanner final : public drive_link::ScannerImage, public drive_link::Lo
 
 class FakeCardStatus final : public WebCardStatus {
  public:
-  const drive_link::CardConfig& config() const override { return card_config; }
-  drive_link::CardStatus card_status() const override { return status; }
+  const config::CardConfig& config() const override { return card_config; }
+  config::CardStatus card_status() const override { return status; }
   const char* drive_link_state() const override { return "up"; }
   const char* drive_model() const override { return "vf-s15"; }
   void WriteLeds(web::JsonWriter& json) const override {
@@ -50,8 +50,8 @@ class FakeCardStatus final : public WebCardStatus {
     json.BeginObject().Key("ports").BeginArray().EndArray().EndObject();
   }
 
-  drive_link::CardConfig card_config;
-  drive_link::CardStatus status;
+  config::CardConfig card_config;
+  config::CardStatus status;
 };
 
 class WebApplicationTest : public ::testing::Test {

@@ -39,8 +39,8 @@ class ModbusBoardTest : public ::testing::Test {
     data.status.port_rates = {3, 0};
     data.drive_link = drive_link::LinkState::kUp;
     h_.server.SetBoardData(data);
-    drive_link::CardConfig config;
-    config.ip_mode = drive_link::IpMode::kDhcp;
+    config::CardConfig config;
+    config.ip_mode = config::IpMode::kDhcp;
     config.modbus_master = {192, 168, 1, 30};
     config.io_scanning = true;
     config.timeout_tenths = 20;
@@ -133,7 +133,7 @@ TEST_F(ModbusBoardTest, DeviceIdUnit251_SeedAnswerForEveryCode) {
 }
 
 TEST_F(ModbusBoardTest, DeviceIdUnit255_TheBoardsEvenWithoutIoScanning) {
-  drive_link::CardConfig config;
+  config::CardConfig config;
   config.io_scanning = false;
   h_.server.Configure(config);
   EXPECT_EQ(Exchange({0x00, 0x15, 0x00, 0x00, 0x00, 0x05, 0xFF, 0x2B, 0x0E, 0x01, 0x00}),

@@ -14,6 +14,7 @@
 
 #include "drive_link/drive_registers.h"
 #include "drive_link/register_access.h"
+#include "drive_link_part_fakes.h"
 #include "modbus/server.h"
 
 namespace modbus::test {
@@ -37,6 +38,10 @@ class FakeDriveRegisters final : public drive_link::DriveRegisters {
                                               drive_link::AccessListener& listener) override {
     return Start(Access{true, number, value, mode}, listener);
   }
+  // The register proxy's own check (CheckRegisterWrite) on `rules`.
+  drive_link::AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const override {
+    return drive_link::CheckRegisterWrite(number, value, rules);
+  }
   void Cancel(drive_link::AccessListener& listener) override {
     ++cancels;
     std::erase_if(pending_, [&](const Pending& p) { return p.listener == &listener; });
@@ -54,6 +59,8 @@ class FakeDriveRegisters final : public drive_link::DriveRegisters {
   std::size_t pending() const { return pending_.size(); }
 
   std::map<std::uint16_t, std::uint16_t> registers;
+  // What CheckWrite knows: a configuration loaded, the scanner's targets (ServerHarness: its scanner).
+  drive_link::test::FakeAccessRules rules;
   // An access to one of these numbers fails with the error (reads and writes).
   std::map<std::uint16_t, drive_link::AccessError> errors;
   int busy_next = 0;       // the next n Read/Write calls return kResourceExhausted
@@ -156,7 +163,9 @@ inline constexpr Ipv4Address kOtherAddress{192, 168, 1, 31};
 
 // A server with fakes behind it and a fake time.
 struct ServerHarness {
-  explicit ServerHarness(const ServerOptions& options = {}) : server(drive, scanner, loss, options) {}
+  explicit ServerHarness(const ServerOptions& options = {}) : server(drive, scanner, loss, options) {
+    drive.rules.scanner = &scanner;
+  }
 
   ConnectionId Connect(const Ipv4Address& peer = kClientAddress) {
     const base::Result<ConnectionId> id = server.Open(peer, now);

@@ -30,7 +30,7 @@ class ModbusIoScanningTest : public ::testing::Test {
     h_.scanner.monitor_words = {0x4000, 0x1770, 0x000D, 0x000E, 0x000F, 0x0010};
   }
 
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   ServerHarness h_;
 };
 
@@ -208,7 +208,7 @@ class ModbusConnectionLossTest : public ::testing::Test {
     id_ = h_.Connect();
   }
 
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   ServerHarness h_;
   ConnectionId id_ = 0;
 };

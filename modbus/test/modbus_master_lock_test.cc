@@ -37,7 +37,7 @@ class ModbusMasterLockTest : public ::testing::Test {
     other_ = h_.Connect(test::kOtherAddress);
   }
 
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   ServerHarness h_;
   ConnectionId master_ = 0;
   ConnectionId other_ = 0;
@@ -116,7 +116,7 @@ TEST_F(ModbusMasterLockTest, IoScanningOff_NobodyIsLockedOut) {
 }
 
 TEST(ModbusControlLockFor, OnlyWithIoScanningAndAMasterAndAnotherPeer) {
-  drive_link::CardConfig config;
+  config::CardConfig config;
   config.io_scanning = true;
   config.modbus_master = {10, 0, 0, 1};
   EXPECT_TRUE(ControlLockedFor(config, {10, 0, 0, 2}));

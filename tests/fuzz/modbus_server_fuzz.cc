@@ -75,7 +75,7 @@ void Check(const Client& client) {
 class Run {
  public:
   explicit Run(std::uint8_t configuration) {
-    drive_link::CardConfig config;
+    config::CardConfig config;
     config.io_scanning = (configuration & 0x01) != 0;
     if ((configuration & 0x02) != 0) config.modbus_master = modbus::test::kOtherAddress;
     config.timeout_tenths = (configuration & 0x04) != 0 ? 5 : 0;

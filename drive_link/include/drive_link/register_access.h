@@ -14,39 +14,24 @@
 #include <cstdint>
 
 #include "base/status.h"
+#include "config/access_result.h"
+#include "config/card_config.h"
+#include "drive_link/drive_registers.h"
 #include "hal/clock.h"
 
 namespace drive_link {
 
-// Why an access failed. Each maps onto one protocol error in each front end (docs/modbus.md, docs/cip.md).
-enum class AccessError : std::uint8_t {
-  kNone,
-  kNoSuchRegister,           // a number ending A-F (refused locally) or the inverter's 0002
-  kOutOfRange,               // the inverter's 0001 "data error"
-  kNotWritableWhileRunning,  // the inverter's 0000 on a parameter write while the drive runs
-  kReadOnly,                 // a monitor (FC00-FEFF), a value the card owns (c502/c503, c517-c522,
-                             // c524-c536, c555, c041-c046, c061-c066) or FA30 (the card's fault
-                             // line): refused locally
-  kReservedForScanner,       // a command register the cyclic exchange owns (IO scanning, §9.1)
-  kRefused,                  // the inverter's 0000 otherwise, or 0003 "command error"
-  kLinkDown,                 // option fault e-23 or configuration not loaded yet: nothing was sent
-  kTimeout,                  // no reply after every retry
-  kNetworkLost,              // a run or speed command (FA06 with run/jog, FA07) while a network loss holds
-                             // the drive (CommandsHeldByLoss): refused locally, docs/drive-control.md
-};
-
-const char* AccessErrorName(AccessError error);
+// The outcome of one access and the scanner word count are the card's shared vocabulary (config/): the
+// front ends name them through this facade.
+using config::AccessError;
+using config::AccessErrorName;
+using config::AccessResult;
+using config::kScannerWordCount;
 
 // W writes RAM and EEPROM; P writes RAM only. EEPROM lasts about 100,000 writes (seed 000 §8.5): front
 // ends choose kRamAndEeprom only for an explicit parameter write by a user, never for cyclic data.
 enum class WriteMode : std::uint8_t { kRamAndEeprom, kRamOnly };
 
-struct AccessResult {
-  AccessError error = AccessError::kNone;
-  std::uint16_t number = 0;  // the communication number accessed
-  std::uint16_t value = 0;   // read: the value; write: the value the inverter accepted
-  bool ok() const { return error == AccessError::kNone; }
-};
 
 // Names one access in its completion; never kNoAccess.
 using AccessToken = std::uint32_t;
@@ -69,12 +54,15 @@ class DriveRegisters {
   virtual base::Result<AccessToken> Read(std::uint16_t number, AccessListener& listener) = 0;
   virtual base::Result<AccessToken> Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
                                           AccessListener& listener) = 0;
+  // The refusal a Write of `value` to `number` would get now without reaching the inverter; kNone when
+  // the inverter decides. The one check of a register write (drive_link::CheckRegisterWrite): a front end
+  // asks it before a multi-register write, so that nothing is written when a later register is refused.
+  virtual AccessError CheckWrite(std::uint16_t number, std::uint16_t value) const = 0;
   // Forgets every pending completion for `listener` (a connection closed). The accesses themselves run
   // to their end: a write already on the wire cannot be taken back.
   virtual void Cancel(AccessListener& listener) = 0;
 };
 
-inline constexpr std::size_t kScannerWordCount = 6;
 using ScannerWords = std::array<std::uint16_t, kScannerWordCount>;
 
 // The cyclic exchange's image (seed 000 §3.2.4, §9.2). Word i is scanner word i+1: command word i goes
@@ -101,6 +89,11 @@ struct DriveCommandWords {
   std::uint16_t fa07 = 0;
   constexpr bool operator==(const DriveCommandWords&) const = default;
 };
+
+// The registers the drive command owns: FA06 and FA07. While it is taken, a scanner word whose menu
+// targets one of them is displaced (not written by the exchange, not carried by assembly 100): the one
+// statement of that rule, for the drive link and the drive profile alike.
+constexpr bool IsDriveCommandRegister(std::uint16_t number) { return number == reg::kFa06 || number == reg::kFa07; }
 
 struct DriveFeedbackWords {
   std::uint16_t fd01 = 0;  // status

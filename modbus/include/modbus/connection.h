@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <span>
 
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/register_access.h"
 #include "hal/clock.h"
 #include "modbus/drive_transfer.h"
@@ -58,7 +58,7 @@ struct ServerShared {
   drive_link::DriveRegisters& drive;
   drive_link::ScannerImage& scanner;
   LossTimer loss;
-  drive_link::CardConfig config;
+  config::CardConfig config;
   OptionBoardData board;
   hal::Micros idle_timeout = 0;  // 0: never
   std::uint16_t clients = 0;

@@ -33,13 +33,14 @@ ExceptionCode ExceptionForWriteError(drive_link::AccessError error);
 
 // Checks a read before it starts: 02 when it runs past communication number FFF9.
 ExceptionCode CheckDriveRead(std::uint16_t first, std::uint16_t count);
-// Checks a write before anything is written: 02 when it runs past FFF9, when its start does not exist
-// (ends A-F), when a register is a monitor (FC00-FEFF, read-only), or when a register is the target of
-// a scanner command word in use (§9.1: reserved for IO scanning; the cyclic exchange knows when, e.g.
-// from the configuration load on while c604 = 1), or, with `control_locked` (the client is not the IO
-// scanning master: ControlLockedFor), when a register is a control register (reg::IsControlRegister).
-ExceptionCode CheckDriveWrite(std::uint16_t first, std::uint16_t count, const drive_link::ScannerImage& scanner,
-                              bool control_locked);
+// Checks a write before anything is written: 02 when it runs past FFF9, when the drive's own check
+// (DriveRegisters::CheckWrite, the one check of a register write) refuses a register for its address
+// (no such register, read-only, reserved for IO scanning: the errors that map to 02), or, with
+// `control_locked` (the client is not the IO scanning master: ControlLockedFor), when a register is a
+// control register (reg::IsControlRegister). A refusal that may pass (link down, a loss holding the
+// drive) is left to the access itself.
+ExceptionCode CheckDriveWrite(std::uint16_t first, std::span<const std::uint16_t> values,
+                              const drive_link::DriveRegisters& drive, bool control_locked);
 
 class DriveTransfer {
  public:

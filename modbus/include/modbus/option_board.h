@@ -14,7 +14,7 @@
 #include <string_view>
 
 #include "base/status.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/link_client.h"
 
 namespace modbus {
@@ -42,7 +42,7 @@ struct OptionBoardData {
   // and register 0 of unit 251.
   std::uint16_t firmware_version = 0x0106;
   // c502/c503, the MAC, the actual address (c524-c535) and c536, as the card writes them back.
-  drive_link::CardStatus status;
+  config::CardStatus status;
   drive_link::LinkState drive_link = drive_link::LinkState::kStarting;
   // Read from the inverter at start-up (the firmware's job); empty until then, and sent as such.
   IdentityText drive_product_code;  // FC 43 unit 248 object 1, e.g. "VFMB1S-2007PL"
@@ -62,7 +62,7 @@ enum class LossState : std::uint16_t {
 
 struct OptionBoardView {
   const OptionBoardData& data;
-  const drive_link::CardConfig& config;
+  const config::CardConfig& config;
   std::uint16_t clients = 0;  // open Modbus TCP connections
   LossState loss = LossState::kDisabled;
 };

@@ -22,7 +22,7 @@
 
 #include "base/pool_stats.h"
 #include "base/status.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/register_access.h"
 #include "hal/clock.h"
 #include "modbus/connection.h"
@@ -50,7 +50,7 @@ class Server {
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;
 
-  void Configure(const drive_link::CardConfig& config);
+  void Configure(const config::CardConfig& config);
   void SetBoardData(const OptionBoardData& data) { shared_.board = data; }
 
   // A TCP client was accepted. kResourceExhausted when kMaxClients are open (the caller refuses it).
@@ -79,7 +79,7 @@ class Server {
   base::PoolStats client_pool() const;
   LossState loss_state() const { return shared_.loss.state(); }
   const ServerCounters& counters() const { return shared_.counters; }
-  const drive_link::CardConfig& config() const { return shared_.config; }
+  const config::CardConfig& config() const { return shared_.config; }
 
  private:
   Connection* Find(ConnectionId id);

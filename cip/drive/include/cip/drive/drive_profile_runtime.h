@@ -33,7 +33,7 @@
 #include "cip/drive/control_supervisor.h"
 #include "cip/drive/drive_profile.h"
 #include "cip/drive/parameter_channel.h"
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 #include "drive_link/register_access.h"
 #include "hal/clock.h"
 
@@ -92,7 +92,7 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
 
   // The configuration in force (f856, cmod, fmod, c001-c006): at start-up and from every
   // ConfigListener::OnConfigLoaded. Factory values until then.
-  void SetCardConfig(const drive_link::CardConfig& config);
+  void SetCardConfig(const config::CardConfig& config);
 
   // ---- Commands ----
   // Acts on one output assembly's data: decoded, edges tracked, Control Supervisor stepped, FA06/FA07
@@ -196,7 +196,7 @@ class DriveProfileRuntime final : private drive_link::AccessListener {
 
   DriveProfileLinks links_;
   DriveProfileOptions options_;
-  drive_link::CardConfig config_;
+  config::CardConfig config_;
   hal::Micros now_ = 0;  // of the last Poll
 
   ControlSupervisor supervisor_;

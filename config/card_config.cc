@@ -1,10 +1,13 @@
 // The card's configuration as read from the inverter: menu tables (seed 000 §3.1), the numbers read at
 // start-up, their validation (ParseCardConfig) and the drive status code c555.
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 
 #include "drive_link/drive_registers.h"
 
-namespace drive_link {
+namespace config {
+
+namespace reg = drive_link::reg;
+
 namespace {
 
 // c001-c006 menus 0-17 (seed 000 §3.1); 0 = "-" (not used) and the reserved entries 4, 7, 9-12.
@@ -128,32 +131,6 @@ bool IsCommandMenuValid(std::uint16_t menu) { return menu == 0 || CommandMenuTar
 
 bool IsMonitorMenuValid(std::uint16_t menu) { return menu == 0 || MonitorMenuSource(menu) != 0; }
 
-const char* AccessErrorName(AccessError error) {
-  switch (error) {
-    case AccessError::kNone:
-      return "none";
-    case AccessError::kNoSuchRegister:
-      return "no-such-register";
-    case AccessError::kOutOfRange:
-      return "out-of-range";
-    case AccessError::kNotWritableWhileRunning:
-      return "not-writable-while-running";
-    case AccessError::kReadOnly:
-      return "read-only";
-    case AccessError::kReservedForScanner:
-      return "reserved-for-scanner";
-    case AccessError::kRefused:
-      return "refused";
-    case AccessError::kLinkDown:
-      return "link-down";
-    case AccessError::kTimeout:
-      return "timeout";
-    case AccessError::kNetworkLost:
-      return "network-lost";
-  }
-  return "?";
-}
-
 ParsedConfig ParseCardConfig(std::span<const AccessResult, kConfigNumberCount> reads) {
   ParsedConfig parsed;
   CardConfig& c = parsed.config;
@@ -207,4 +184,4 @@ std::uint16_t DriveStatusCode(std::uint16_t fd01) {
   return 3;
 }
 
-}  // namespace drive_link
+}  // namespace config

@@ -1,6 +1,6 @@
-// drive_link card configuration (drive_link/include/drive_link/card_config.h): the scanner menu tables
+// The card configuration (config/include/config/card_config.h): the scanner menu tables
 // (seed 000 §3.1), the numbers read at start-up, ParseCardConfig's validation and problem reports, c555.
-#include "drive_link/card_config.h"
+#include "config/card_config.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,10 @@
 
 #include "drive_link/drive_registers.h"
 
-namespace drive_link {
+namespace config {
 namespace {
+
+namespace reg = drive_link::reg;
 
 // Every menu of c001-c006 with its register (seed 000 §3.1); the others are reserved ("-").
 const std::map<std::uint16_t, std::uint16_t> kCommandMenus = {
@@ -314,4 +316,4 @@ TEST(CardConfigTest, AccessErrorNamesAreDistinct) {
 }
 
 }  // namespace
-}  // namespace drive_link
+}  // namespace config

@@ -9,9 +9,12 @@
 #include <cstdint>
 #include <span>
 
-#include "drive_link/register_access.h"
+#include "config/access_result.h"
 
-namespace drive_link {
+namespace config {
+
+// Scanner words: c001-c006 (command), c021-c026 (monitor).
+inline constexpr std::size_t kScannerWordCount = 6;
 
 // The register a scanner menu number selects (seed 000 §3.1): c001-c006 menus 0-17, c021-c026 menus
 // 0-35. 0 for menu 0 ("-", not used) and for reserved or unknown menus; use the Is*Valid functions to
@@ -94,4 +97,4 @@ struct CardStatus {
 // (gate block).
 std::uint16_t DriveStatusCode(std::uint16_t fd01);
 
-}  // namespace drive_link
+}  // namespace config

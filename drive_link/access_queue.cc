@@ -1,9 +1,11 @@
-// RegisterProxy: DriveRegisters, the on-demand accesses of the front ends (docs/drive-link.md, "Register
-// proxy"): local refusals, the pool, one access on the link at a time, error mapping, delivery from Poll.
+// AccessQueue: the on-demand accesses of the front ends (docs/drive-link.md, "Register proxy"): local
+// refusals, the pool, one access on the link at a time, error mapping, delivery from Poll.
+#include "drive_link/access_queue.h"
+
 #include <algorithm>
 
+#include "drive_link/card_write_back.h"
 #include "drive_link/drive_registers.h"
-#include "drive_link/register_proxy.h"
 
 namespace drive_link {
 namespace {
@@ -30,41 +32,40 @@ bool Before(std::uint32_t a, std::uint32_t b) { return static_cast<std::int32_t>
 
 }  // namespace
 
-base::Result<AccessToken> RegisterProxy::Read(std::uint16_t number, AccessListener& listener) {
-  if (!started_ || link_.state() == LinkState::kFault) return base::FailedPrecondition();
-  AccessError refusal = AccessError::kNone;
-  if (!reg::HasDecimalLastDigit(number)) {
-    refusal = AccessError::kNoSuchRegister;  // xxxA-xxxF do not exist (seed 000 §8.9 (5))
-  } else if (!loaded_) {
-    refusal = AccessError::kLinkDown;  // configuration not loaded yet (start-up, f899, after e-23)
-  }
-  return Accept(Transaction::Read(number), listener, refusal);
+AccessError AccessQueue::CheckRead(std::uint16_t number) const {
+  if (!reg::HasDecimalLastDigit(number)) return AccessError::kNoSuchRegister;  // xxxA-xxxF (seed 000 §8.9 (5))
+  if (!rules_.ConfigLoaded()) return AccessError::kLinkDown;  // start-up, f899, after e-23
+  return AccessError::kNone;
 }
 
-base::Result<AccessToken> RegisterProxy::Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
-                                               AccessListener& listener) {
-  if (!started_ || link_.state() == LinkState::kFault) return base::FailedPrecondition();
+AccessError CheckRegisterWrite(std::uint16_t number, std::uint16_t value, const AccessRules& rules) {
+  if (!reg::HasDecimalLastDigit(number)) return AccessError::kNoSuchRegister;
+  if (reg::IsMonitorNumber(number) || CardWriteBack::IsOwnedNumber(number) || number == reg::kFa30) {
+    return AccessError::kReadOnly;  // FA30 is the card's own fault line (c101 = 4)
+  }
+  if (!rules.ConfigLoaded()) return AccessError::kLinkDown;
+  if (rules.IsScannerTarget(number)) return AccessError::kReservedForScanner;  // IO scanning (seed 000 §9.1)
+  if (RunOrSpeedCommand(number, value) && rules.CommandsHeldByLoss()) {
+    return AccessError::kNetworkLost;  // the loss action owns FA06: a success would be a lie
+  }
+  return AccessError::kNone;
+}
+
+base::Result<AccessToken> AccessQueue::Read(std::uint16_t number, AccessListener& listener) {
+  return Accept(Transaction::Read(number), listener, CheckRead(number));
+}
+
+base::Result<AccessToken> AccessQueue::Write(std::uint16_t number, std::uint16_t value, WriteMode mode,
+                                             AccessListener& listener) {
   Transaction transaction = mode == WriteMode::kRamAndEeprom ? Transaction::Write(number, value)
                                                              : Transaction::WriteRam(number, value);
   // f899 = 1 resets the option and the drive: it is sent once and its reply is not waited for (the link
   // sets the same for FA06/FA00 fault resets itself).
   if (number == reg::kF899 && value == 1) transaction.expect_no_reply = true;
-  AccessError refusal = AccessError::kNone;
-  if (!reg::HasDecimalLastDigit(number)) {
-    refusal = AccessError::kNoSuchRegister;
-  } else if (reg::IsMonitorNumber(number) || IsOwnedNumber(number) || number == reg::kFa30) {
-    refusal = AccessError::kReadOnly;  // FA30 is the card's own fault line (c101 = 4)
-  } else if (!loaded_) {
-    refusal = AccessError::kLinkDown;
-  } else if (IsScannerTarget(number)) {
-    refusal = AccessError::kReservedForScanner;  // IO scanning owns it (seed 000 §9.1)
-  } else if (RunOrSpeedCommand(number, value) && CommandsHeldByLoss()) {
-    refusal = AccessError::kNetworkLost;  // the loss action owns FA06: a success would be a lie
-  }
-  return Accept(transaction, listener, refusal);
+  return Accept(transaction, listener, CheckWrite(number, value));
 }
 
-void RegisterProxy::Cancel(AccessListener& listener) {
+void AccessQueue::Cancel(AccessListener& listener) {
   for (Access& access : accesses_) {
     if (access.state == Access::State::kFree || access.listener != &listener) continue;
     if (access.state == Access::State::kOnLink) {
@@ -75,7 +76,7 @@ void RegisterProxy::Cancel(AccessListener& listener) {
   }
 }
 
-base::Result<AccessToken> RegisterProxy::Accept(const Transaction& transaction, AccessListener& listener,
+base::Result<AccessToken> AccessQueue::Accept(const Transaction& transaction, AccessListener& listener,
                                                 AccessError local_refusal) {
   Access* slot = nullptr;
   for (Access& access : accesses_) {
@@ -86,7 +87,7 @@ base::Result<AccessToken> RegisterProxy::Accept(const Transaction& transaction, 
   }
   if (slot == nullptr) {
     ++counters_.pool_full;
-    access_marks_.NoteRefused();
+    marks_.NoteRefused();
     return base::ResourceExhausted();
   }
   *slot = Access{};
@@ -98,19 +99,18 @@ base::Result<AccessToken> RegisterProxy::Accept(const Transaction& transaction, 
   slot->transaction = transaction;
   slot->result.number = transaction.comm_number;
   ++counters_.accesses;
-  access_marks_.NoteTaken(AccessesInUse());
+  marks_.NoteTaken(InUse());
   // A local refusal is delivered on the next Poll like any result, never from inside Read/Write.
-  if (local_refusal != AccessError::kNone) FinishAccess(*slot, local_refusal, 0);
-  wake_ = true;
+  if (local_refusal != AccessError::kNone) Finish(*slot, local_refusal, 0);
   return slot->token;
 }
 
-std::size_t RegisterProxy::AccessesInUse() const {
+std::size_t AccessQueue::InUse() const {
   return static_cast<std::size_t>(std::count_if(accesses_.begin(), accesses_.end(),
                                                 [](const Access& a) { return a.state != Access::State::kFree; }));
 }
 
-void RegisterProxy::FinishAccess(Access& access, AccessError error, std::uint16_t value) {
+void AccessQueue::Finish(Access& access, AccessError error, std::uint16_t value) {
   access.state = Access::State::kDone;
   access.result.error = error;
   access.result.value = error == AccessError::kNone ? value : 0;
@@ -122,52 +122,67 @@ void RegisterProxy::FinishAccess(Access& access, AccessError error, std::uint16_
 }
 
 // The oldest waiting access goes to the link; the next one follows when it has completed.
-void RegisterProxy::SubmitAccess() {
+AccessQueue::Access* AccessQueue::OldestWaiting() {
   Access* next = nullptr;
   for (Access& access : accesses_) {
     if (access.state != Access::State::kWaiting) continue;
     if (next == nullptr || Before(access.order, next->order)) next = &access;
   }
-  if (next == nullptr) return;
-  const base::Result<RequestId> id = link_.Submit(next->transaction);
-  if (id.ok()) {
-    next->state = Access::State::kOnLink;
-    next->request = *id;
-    access_on_link_ = true;
-    reset_on_link_ = ResetsInverter(next->transaction);
-  } else if (id.status().code() != base::StatusCode::kResourceExhausted) {
-    FinishAccess(*next, id.status().code() == base::StatusCode::kFailedPrecondition ? AccessError::kLinkDown
-                                                                                    : AccessError::kRefused,
-                 0);
-  }
+  return next;
 }
 
-void RegisterProxy::OnAccessComplete(Access& access, const Completion& completion) {
+const Transaction* AccessQueue::NextToSend() {
+  if (on_link_) return nullptr;
+  const Access* next = OldestWaiting();
+  return next == nullptr ? nullptr : &next->transaction;
+}
+
+void AccessQueue::Sent(RequestId request) {
+  Access* next = OldestWaiting();
+  if (next == nullptr) return;
+  next->state = Access::State::kOnLink;
+  next->request = request;
+  on_link_ = true;
+  reset_on_link_ = ResetsInverter(next->transaction);
+}
+
+void AccessQueue::SendRefused(base::StatusCode code) {
+  Access* next = OldestWaiting();
+  if (next == nullptr || code == base::StatusCode::kResourceExhausted) return;
+  Finish(*next, code == base::StatusCode::kFailedPrecondition ? AccessError::kLinkDown : AccessError::kRefused, 0);
+}
+
+bool AccessQueue::OnComplete(RequestId request, const Completion& completion) {
+  for (Access& access : accesses_) {
+    if (access.state != Access::State::kOnLink || access.request != request) continue;
+    on_link_ = false;
+    Complete(access, completion);
+    return true;
+  }
+  return false;
+}
+
+void AccessQueue::Complete(Access& access, const Completion& completion) {
   reset_on_link_ = false;
   const Transaction transaction = access.transaction;
   const AccessError error = MapError(access, completion);
   std::uint16_t value = completion.data;
   if (IsWrite(transaction) && completion.outcome == Outcome::kNoReply) value = transaction.data;
-  // A stop written to FA06 while the loss holds it must not be undone by the action's next write.
-  if (error == AccessError::kNone && IsWrite(transaction) && transaction.comm_number == reg::kFa06) {
-    HoldStopDuringLoss(transaction.data);
-  }
   if (access.listener == nullptr) {
     access = Access{};  // cancelled: nobody to tell
   } else {
-    FinishAccess(access, error, value);
+    Finish(access, error, value);
   }
-  if (error != AccessError::kNone || !ResetsInverter(transaction)) return;
-  if (transaction.comm_number == reg::kF899) {
-    // f899 = 1 reset the option's configuration too: read it again once the inverter is back (the link
-    // holds the reads until its reset silence is over), and start the card's state afresh.
-    BeginLoad(/*card_reset=*/true);
-  } else {
-    MarkCommandsUnknown();  // a fault reset cleared FA06/FA07 in the inverter
-  }
+  if (error != AccessError::kNone || !IsWrite(transaction)) return;
+  // A stop written to FA06 while the loss holds it must not be undone by the action's next write.
+  rules_.OnWriteAccepted(transaction.comm_number, transaction.data);
+  // f899 = 1 reset the option's configuration too: it is read again once the inverter is back (the link
+  // holds the reads until its reset silence is over), and the card's state starts afresh. A fault reset
+  // cleared FA06/FA07 in the inverter.
+  if (ResetsInverter(transaction)) rules_.OnInverterReset(/*card_reset=*/transaction.comm_number == reg::kF899);
 }
 
-AccessError RegisterProxy::MapError(const Access& access, const Completion& completion) const {
+AccessError AccessQueue::MapError(const Access& access, const Completion& completion) const {
   switch (completion.outcome) {
     case Outcome::kOk:
       return AccessError::kNone;
@@ -190,7 +205,7 @@ AccessError RegisterProxy::MapError(const Access& access, const Completion& comp
       // 0000 on a parameter write while the drive runs: "cannot be changed during operation" (seed 003
       // §3.4); otherwise the inverter refused for a reason the card cannot name.
       const bool parameter = access.transaction.comm_number < reg::kFa00;
-      const bool running = fd01_known_ && (fd01_ & reg::status_bit::kRunning) != 0;
+      const bool running = rules_.DriveRunning();
       return IsWrite(access.transaction) && parameter && running ? AccessError::kNotWritableWhileRunning
                                                                  : AccessError::kRefused;
     }
@@ -202,16 +217,15 @@ AccessError RegisterProxy::MapError(const Access& access, const Completion& comp
   return AccessError::kRefused;
 }
 
-void RegisterProxy::FailWaitingAccesses(AccessError error) {
+void AccessQueue::FailWaiting(AccessError error) {
   for (Access& access : accesses_) {
-    if (access.state == Access::State::kWaiting) FinishAccess(access, error, 0);
+    if (access.state == Access::State::kWaiting) Finish(access, error, 0);
   }
-  wake_ = true;
 }
 
 // Completed accesses in acceptance order. The slot is freed before the listener runs, so it may start a
 // new access; one finished during this delivery waits for the next Poll.
-void RegisterProxy::DeliverAccesses() {
+void AccessQueue::Deliver() {
   std::array<AccessToken, kMaxPendingAccesses> due{};
   std::size_t count = 0;
   for (;;) {
