@@ -88,16 +88,16 @@ ConnectionManager::ConnectionManager(MessageRouter& router, const DeviceInfoProv
 
 std::span<const AttributeSpec> ConnectionManager::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void ConnectionManager::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void ConnectionManager::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   const std::array<std::uint16_t, 8> values = {
       counters_.open_requests,       counters_.open_format_rejects, counters_.open_resource_rejects,
       counters_.open_other_rejects,  counters_.close_requests,      counters_.close_format_rejects,
       counters_.close_other_rejects, counters_.connection_timeouts,
   };
-  if (id >= 1 && id <= values.size()) out.U16(values[id - 1]);
+  if (id >= 1 && id <= values.size()) out.U16Le(values[id - 1]);
 }
 
-ServiceStatus ConnectionManager::ExecuteOther(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus ConnectionManager::ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) {
   switch (request.service) {
     case kServiceForwardOpen:
       return ForwardOpen(request, reply, false);
@@ -123,7 +123,7 @@ DeviceKey ConnectionManager::Key() const {
 // ---- Forward_Open ------------------------------------------------------------------------------------
 
 ServiceStatus ConnectionManager::RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad,
-                                            ByteWriter& reply) {
+                                            base::ByteWriter& reply) {
   if (IsFormatReject(failure)) {
     ++counters_.open_format_rejects;
   } else if (IsResourceReject(failure)) {
@@ -134,7 +134,7 @@ ServiceStatus ConnectionManager::RejectOpen(const ConnectionFailure& failure, co
   return EncodeConnectionFailure(failure, triad, reply);
 }
 
-ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, ByteWriter& reply, bool large) {
+ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, base::ByteWriter& reply, bool large) {
   ++counters_.open_requests;
   const Decoded<ForwardOpenRequest> decoded = DecodeForwardOpen(service.data, large);
   const ForwardOpenRequest& request = decoded.request;
@@ -379,7 +379,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
 
 // ---- Forward_Close and closing -----------------------------------------------------------------------
 
-ServiceStatus ConnectionManager::ForwardClose(const ServiceRequest& service, ByteWriter& reply) {
+ServiceStatus ConnectionManager::ForwardClose(const ServiceRequest& service, base::ByteWriter& reply) {
   ++counters_.close_requests;
   const Decoded<ForwardCloseRequest> decoded = DecodeForwardClose(service.data);
   const ConnectionTriad& triad = decoded.request.triad;

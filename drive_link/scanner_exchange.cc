@@ -379,11 +379,11 @@ void RegisterProxy::SetCardStatus(const CardStatus& status) {
 
 void RegisterProxy::UpdateStatusValues() {
   for (std::size_t i = 0; i < 2; ++i) SetOwned(kRatesAt + i, status_.port_rates[i]);
-  for (std::size_t i = 0; i < 6; ++i) SetOwned(kMacAt + i, status_.mac[i]);
+  for (std::size_t i = 0; i < 6; ++i) SetOwned(kMacAt + i, status_.mac.octets()[i]);
   for (std::size_t i = 0; i < 4; ++i) {
-    SetOwned(kIpAt + i, status_.ip[i]);
-    SetOwned(kNetmaskAt + i, status_.netmask[i]);
-    SetOwned(kGatewayAt + i, status_.gateway[i]);
+    SetOwned(kIpAt + i, status_.ip.octets()[i]);
+    SetOwned(kNetmaskAt + i, status_.netmask.octets()[i]);
+    SetOwned(kGatewayAt + i, status_.gateway.octets()[i]);
   }
   SetOwned(kC536At, c536_);
 }

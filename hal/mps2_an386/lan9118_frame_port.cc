@@ -59,7 +59,7 @@ LinkState Resolve(std::uint32_t control, std::uint32_t status, std::uint32_t adv
 
 }  // namespace
 
-base::Status Lan9118FramePort::Start(const MacAddress& mac) {
+base::Status Lan9118FramePort::Start(const base::MacAddress& mac) {
   mac_ = mac;
   if (Csr(kByteTest) != kByteTestValue) return base::Unavailable();
   chip_id_ = Csr(kIdRev);
@@ -259,14 +259,14 @@ base::Status Lan9118FramePort::Transmit(PortId port, std::span<const std::uint8_
   return base::OkStatus();
 }
 
-base::Status Lan9118FramePort::JoinMulticast(const MacAddress& group) {
+base::Status Lan9118FramePort::JoinMulticast(const base::MacAddress& group) {
   CriticalSection masked;
   filter_.Join(group);
   if (started_) ProgramMulticast();
   return base::OkStatus();
 }
 
-base::Status Lan9118FramePort::LeaveMulticast(const MacAddress& group) {
+base::Status Lan9118FramePort::LeaveMulticast(const base::MacAddress& group) {
   CriticalSection masked;
   if (base::Status left = filter_.Leave(group); !left.ok()) return left;
   if (started_) ProgramMulticast();

@@ -30,18 +30,22 @@ TextLine& TextLine::Hex(std::uint8_t byte) {
   return Text(std::string_view(pair, 2));
 }
 
-TextLine& TextLine::Ipv4(std::uint32_t host_order) {
-  for (int shift = 24; shift >= 0; shift -= 8) {
-    Unsigned((host_order >> shift) & 0xFF);
-    if (shift != 0) Text(".");
+TextLine& TextLine::Ipv4(const base::Ipv4Address& address) {
+  bool first = true;
+  for (std::uint8_t octet : address.octets()) {
+    if (!first) Text(".");
+    Unsigned(octet);
+    first = false;
   }
   return *this;
 }
 
-TextLine& TextLine::Mac(const MacAddress& mac) {
-  for (std::size_t i = 0; i < mac.size(); ++i) {
-    if (i != 0) Text(":");
-    Hex(mac[i]);
+TextLine& TextLine::Mac(const base::MacAddress& mac) {
+  bool first = true;
+  for (std::uint8_t octet : mac.octets()) {
+    if (!first) Text(":");
+    Hex(octet);
+    first = false;
   }
   return *this;
 }

@@ -96,11 +96,11 @@ void FuzzCpf(std::span<const std::uint8_t> input) {
   const base::Result<cip::CpfPacket> packet = cip::DecodeCpf(input);
   if (packet.ok()) {
     std::vector<std::uint8_t> buffer(input.size() + 8);
-    cip::ByteWriter out(buffer);
-    out.U16(static_cast<std::uint16_t>(packet->count));
+    base::ByteWriter out(buffer);
+    out.U16Le(static_cast<std::uint16_t>(packet->count));
     for (std::size_t i = 0; i < packet->count; ++i) {
-      out.U16(packet->items[i].type);
-      out.U16(static_cast<std::uint16_t>(packet->items[i].data.size()));
+      out.U16Le(packet->items[i].type);
+      out.U16Le(static_cast<std::uint16_t>(packet->items[i].data.size()));
       out.Bytes(packet->items[i].data);
     }
     Require(out.ok() && out.size() == input.size());

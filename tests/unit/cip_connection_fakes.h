@@ -144,7 +144,7 @@ inline Bytes ForwardOpenRequestBytes(const OpenParams& params) {
   request.transport = DecodeTransportClassTrigger(params.transport);
   request.connection_path = params.path;
   Bytes out(64 + params.path.size());
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   writer.U8(params.large ? kServiceLargeForwardOpen : kServiceForwardOpen);
   writer.U8(2);
   writer.Bytes(Hex("20 06 24 01"));
@@ -175,7 +175,7 @@ inline Bytes ForwardCloseRequestBytes(const ConnectionTriad& triad,
   request.triad = triad;
   request.connection_path = path;
   Bytes out(32 + path.size());
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   writer.U8(kServiceForwardClose);
   writer.U8(2);
   writer.Bytes(Hex("20 06 24 01"));
@@ -192,7 +192,7 @@ inline Bytes IoDatagramBytes(std::uint32_t connection_id, std::uint32_t encapsul
   if (header) payload = {static_cast<std::uint8_t>(run ? 1 : 0), 0, 0, 0};
   for (std::uint8_t byte : data) payload.push_back(byte);
   Bytes out(64 + payload.size());
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   EncodeIoDatagram(connection_id, encapsulation_sequence, sequence, payload, writer);
   out.resize(writer.size());
   return out;

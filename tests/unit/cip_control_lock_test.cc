@@ -45,7 +45,7 @@ class CountingIdentity final : public CipObject {
   std::uint16_t class_id() const override { return kClassIdentity; }
   bool HasInstance(std::uint32_t instance) const override { return instance <= 1; }
   bool SupportsService(std::uint32_t, std::uint8_t service) const override { return service == kServiceReset; }
-  ServiceStatus Execute(const ServiceRequest&, ByteWriter&) override {
+  ServiceStatus Execute(const ServiceRequest&, base::ByteWriter&) override {
     ++resets;
     return Success();
   }

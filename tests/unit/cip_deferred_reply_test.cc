@@ -28,13 +28,13 @@ class SlowObject final : public RequestLifecycle {
   std::vector<std::uint32_t> finished;
   bool ready = false;
 
-  void Answer(RequestContext& context, std::uint16_t id, ByteWriter& out) {
+  void Answer(RequestContext& context, std::uint16_t id, base::ByteWriter& out) {
     ++executions[id];
     if (!done[id]) {
       context.pending = true;
       return;
     }
-    out.U16(static_cast<std::uint16_t>(0x1111 * id));
+    out.U16Le(static_cast<std::uint16_t>(0x1111 * id));
   }
 
   void OnRequestStarted(std::uint32_t requester) override { started.push_back(requester); }
@@ -51,7 +51,7 @@ class SlowCipObject final : public CipObject {
   bool SupportsService(std::uint32_t, std::uint8_t service) const override {
     return service == kServiceGetAttributeSingle;
   }
-  ServiceStatus Execute(const ServiceRequest& request, ByteWriter& reply) override {
+  ServiceStatus Execute(const ServiceRequest& request, base::ByteWriter& reply) override {
     if (!request.path.attribute || *request.path.attribute > 3) return Error(GeneralStatus::kAttributeNotSupported);
     slow_.Answer(*request.context, static_cast<std::uint16_t>(*request.path.attribute), reply);
     return Success();

@@ -141,8 +141,8 @@ class ConnectionManager final : public AttributeHandler,
   // AttributeHandler (class 0x06)
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
   static constexpr int kNone = -1;
@@ -200,9 +200,9 @@ class ConnectionManager final : public AttributeHandler,
     enum class Exhausted : std::uint8_t { kNone, kTable, kExplicit, kMulticastGroups } exhausted = Exhausted::kNone;
   };
 
-  ServiceStatus ForwardOpen(const ServiceRequest& request, ByteWriter& reply, bool large);
-  ServiceStatus ForwardClose(const ServiceRequest& request, ByteWriter& reply);
-  ServiceStatus RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad, ByteWriter& reply);
+  ServiceStatus ForwardOpen(const ServiceRequest& request, base::ByteWriter& reply, bool large);
+  ServiceStatus ForwardClose(const ServiceRequest& request, base::ByteWriter& reply);
+  ServiceStatus RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad, base::ByteWriter& reply);
   std::optional<ConnectionFailure> Validate(const ForwardOpenRequest& request, const RequestContext& context,
                                            Opening& opening) const;
   std::optional<ConnectionFailure> ValidateIo(const ForwardOpenRequest& request, const RequestContext& context,

@@ -8,7 +8,8 @@
 #include <optional>
 #include <span>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/wire_types.h"
 #include "hal/clock.h"
 

@@ -24,7 +24,8 @@
 #include <optional>
 #include <span>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/explicit_messaging.h"
 #include "cip/forward_open.h"
 #include "cip/providers.h"
@@ -175,7 +176,7 @@ struct ReceivedIoDatagram {
 // data item, in that order; kOutOfRange when it is cut short.
 base::Result<ReceivedIoDatagram> ParseIoDatagram(std::span<const std::uint8_t> bytes);
 void EncodeIoDatagram(std::uint32_t connection_id, std::uint32_t encapsulation_sequence, std::uint16_t sequence_count,
-                      std::span<const std::uint8_t> data, ByteWriter& out);
+                      std::span<const std::uint8_t> data, base::ByteWriter& out);
 
 // "a is later than b" for wrapping sequence numbers (serial number arithmetic).
 constexpr bool SequenceAfter16(std::uint16_t a, std::uint16_t b) {

@@ -19,8 +19,8 @@ class TextLine {
   TextLine& Text(std::string_view text);
   TextLine& Unsigned(std::uint64_t value);
   TextLine& Hex(std::uint8_t byte);  // two lowercase digits
-  TextLine& Ipv4(std::uint32_t host_order);
-  TextLine& Mac(const MacAddress& mac);
+  TextLine& Ipv4(const base::Ipv4Address& address);
+  TextLine& Mac(const base::MacAddress& mac);
 
   std::string_view view() const { return {text_.data(), length_}; }
   bool truncated() const { return truncated_; }
