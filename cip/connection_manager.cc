@@ -353,7 +353,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
         producer.multicast = true;
         producer.multicast_index = opening.multicast_index;
         producer.connection_id = NewConnectionId();
-        producer.to = Ipv4Endpoint{opening.multicast_group, kIoPort};
+        producer.to = Ipv4Endpoint{base::Ipv4Address(opening.multicast_group), kIoPort};
       } else {
         producer.connection_id = request.t_to_o_connection_id;
         const bool port_given = context.request_t_to_o && context.request_t_to_o->port != 0;
@@ -365,7 +365,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
     connection.t_to_o_id = producer.connection_id;
     connection.t_to_o_api = producer.api;
     if (producer.multicast) {
-      context.reply_t_to_o = SocketAddress{SocketAddress::kAfInet, kIoPort, producer.to.address};
+      context.reply_t_to_o = SocketAddress{SocketAddress::kAfInet, kIoPort, producer.to.address.HostOrder()};
     }
   }
   connection.open = true;
@@ -515,7 +515,7 @@ bool ConnectionManager::IsOwned(std::uint32_t consumed_point) const {
   });
 }
 
-bool ConnectionManager::OwnedByAnotherOriginator(std::uint32_t originator_address) const {
+bool ConnectionManager::OwnedByAnotherOriginator(base::Ipv4Address originator_address) const {
   return std::any_of(connections_.begin(), connections_.end(), [&](const Connection& c) {
     return c.open && c.transport_class == 1 && c.kind == IoConnectionKind::kExclusiveOwner &&
            c.originator_address != originator_address;

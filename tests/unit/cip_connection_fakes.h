@@ -25,7 +25,7 @@
 
 namespace cip::test {
 
-inline constexpr std::uint32_t kOriginator = 0x0A000202;  // 10.0.2.2
+inline constexpr base::Ipv4Address kOriginator{10, 0, 2, 2};
 inline constexpr std::uint32_t kSession = 0x5EE55105;
 
 class FakeIo final : public IoApplication {
@@ -238,7 +238,7 @@ struct ConnectionCard {
   RecordingEvents events;
   ConnectionManager cm;
   RequestContext context;
-  std::uint32_t originator = kOriginator;  // the IP address requests come from
+  base::Ipv4Address originator = kOriginator;  // the IP address requests come from
   hal::Micros now = 1000000;
   Ipv4Endpoint last_to;
 };

@@ -106,7 +106,7 @@ class CipDeferredReplyTest : public ::testing::Test {
   CipDeferredReplyTest() {
     EXPECT_TRUE(registry_.Register(cip_object_).ok());
     server_.set_request_lifecycle(&slow_);
-    id_ = server_.OpenTcpConnection(Ipv4Endpoint{0x0A000202, 50000}, now_).value();
+    id_ = server_.OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(0x0A000202), 50000}, now_).value();
     const TcpStep step = server_.OnTcpData(id_, test::Concat(Header(0x65, 4, 0), Hex("01 00 00 00")), now_);
     const Bytes reply = Of(step.reply);
     session_ = static_cast<std::uint32_t>(reply.at(4) | reply.at(5) << 8 | reply.at(6) << 16 | reply.at(7) << 24);

@@ -114,7 +114,7 @@ class ConnectionManager final : public AttributeHandler,
   ExtendedDeviceStatus IoStatus() const override;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   bool IsOwned(std::uint32_t consumed_point) const override;
-  bool OwnedByAnotherOriginator(std::uint32_t originator_address) const override;
+  bool OwnedByAnotherOriginator(base::Ipv4Address originator_address) const override;
   // The open connections (at most out.size() of them, in table order); returns how many were written.
   std::size_t ListConnections(std::span<ConnectionInfo> out) const override;
   bool AnyOpen() const override { return ActiveConnections() > 0; }
@@ -153,7 +153,7 @@ class ConnectionManager final : public AttributeHandler,
     IoConnectionKind kind = IoConnectionKind::kExclusiveOwner;
     IoPoints points;
     ConnectionTriad triad;
-    std::uint32_t originator_address = 0;
+    base::Ipv4Address originator_address;
     std::uint32_t session_handle = 0;
     std::uint32_t o_to_t_id = 0;
     std::uint32_t t_to_o_id = 0;

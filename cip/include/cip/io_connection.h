@@ -105,7 +105,7 @@ struct ConnectionInfo {
   IoConnectionKind kind = IoConnectionKind::kExclusiveOwner;  // class 1 only
   IoPoints points;                                            // class 1 only
   ConnectionTriad triad;
-  std::uint32_t originator_address = 0;  // host order
+  base::Ipv4Address originator_address;
   std::uint32_t o_to_t_connection_id = 0;
   std::uint32_t t_to_o_connection_id = 0;
   std::uint32_t o_to_t_api = 0;  // µs
@@ -153,7 +153,7 @@ class ConnectionTable {
   virtual bool IsOwned(std::uint32_t consumed_point) const = 0;
   // Whether an exclusive-owner connection opened from another IP address than `originator_address` is
   // open: the drive then belongs to that originator (docs/security.md "Exclusive-owner write lock").
-  virtual bool OwnedByAnotherOriginator(std::uint32_t originator_address) const = 0;
+  virtual bool OwnedByAnotherOriginator(base::Ipv4Address originator_address) const = 0;
   // The Identity status bits 4-7 the connections call for.
   virtual ExtendedDeviceStatus IoStatus() const = 0;
 };
