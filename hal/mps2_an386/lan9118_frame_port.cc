@@ -1,5 +1,6 @@
 #include "lan9118_frame_port.h"
 
+#include "base/byte_reader.h"
 #include "cortex_m.h"
 #include "lan9118_registers.h"
 #include "mmio.h"
@@ -78,9 +79,10 @@ base::Status Lan9118FramePort::Start(const base::MacAddress& mac) {
 
   {
     CriticalSection masked;
-    WriteMac(kMacAddrL, static_cast<std::uint32_t>(mac[0]) | static_cast<std::uint32_t>(mac[1]) << 8 |
-                            static_cast<std::uint32_t>(mac[2]) << 16 | static_cast<std::uint32_t>(mac[3]) << 24);
-    WriteMac(kMacAddrH, static_cast<std::uint32_t>(mac[4]) | static_cast<std::uint32_t>(mac[5]) << 8);
+    // ADDRL holds octets 0-3 and ADDRH octets 4-5, each little-endian.
+    base::ByteReader octets(mac.octets());
+    WriteMac(kMacAddrL, octets.U32Le());
+    WriteMac(kMacAddrH, octets.U16Le());
     // Own unicast address only (perfect filter), broadcast, multicast by the hash table.
     WriteMac(kMacCr, kMacCrTxEnable | kMacCrRxEnable | kMacCrHashPerfectFilter);
     ProgramMulticast();
