@@ -30,24 +30,20 @@ TextLine& TextLine::Hex(std::uint8_t byte) {
   return Text(std::string_view(pair, 2));
 }
 
-TextLine& TextLine::Ipv4(const base::Ipv4Address& address) {
-  bool first = true;
-  for (std::uint8_t octet : address.octets()) {
-    if (!first) Text(".");
-    Unsigned(octet);
-    first = false;
+TextLine& TextLine::Octets(std::span<const std::uint8_t> octets, std::string_view separator, bool hex) {
+  for (std::size_t i = 0; i < octets.size(); ++i) {
+    if (i != 0) Text(separator);
+    if (hex) {
+      Hex(octets[i]);
+    } else {
+      Unsigned(octets[i]);
+    }
   }
   return *this;
 }
 
-TextLine& TextLine::Mac(const base::MacAddress& mac) {
-  bool first = true;
-  for (std::uint8_t octet : mac.octets()) {
-    if (!first) Text(":");
-    Hex(octet);
-    first = false;
-  }
-  return *this;
-}
+TextLine& TextLine::Ipv4(const base::Ipv4Address& address) { return Octets(address.octets(), ".", false); }
+
+TextLine& TextLine::Mac(const base::MacAddress& mac) { return Octets(mac.octets(), ":", true); }
 
 }  // namespace hal

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "hal/frame_port.h"
@@ -30,6 +31,8 @@ class TextLine {
   }
 
  private:
+  // The octets as decimal or two-digit hex numbers between separators (an address).
+  TextLine& Octets(std::span<const std::uint8_t> octets, std::string_view separator, bool hex);
   std::array<char, kCapacity> text_{};
   std::size_t length_ = 0;
   bool truncated_ = false;
