@@ -66,17 +66,17 @@ std::span<const AttributeSpec> AssemblyObject::InstanceAttributes(std::uint32_t 
                                                         : std::span<const AttributeSpec>(kInputAttributes);
 }
 
-void AssemblyObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) {
+void AssemblyObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) {
   const Entry* entry = Find(instance);
   if (entry == nullptr) return;
   if (id == kAttributeData) {
     if (entry->source != nullptr) entry->source->RefreshInput(instance, entry->data);
     out.Bytes(entry->data);
   }
-  if (id == kAttributeSize) out.U16(static_cast<std::uint16_t>(entry->data.size()));
+  if (id == kAttributeSize) out.U16Le(static_cast<std::uint16_t>(entry->data.size()));
 }
 
-ServiceStatus AssemblyObject::SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) {
+ServiceStatus AssemblyObject::SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) {
   const Entry* entry = Find(instance);
   if (entry == nullptr || id != kAttributeData) return Error(GeneralStatus::kAttributeNotSettable);
   const ServiceStatus size = ExpectSize(value, entry->data.size());

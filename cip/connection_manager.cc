@@ -79,16 +79,16 @@ ConnectionManager::ConnectionManager(MessageRouter& router, const DeviceInfoProv
 
 std::span<const AttributeSpec> ConnectionManager::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void ConnectionManager::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void ConnectionManager::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   const std::array<std::uint16_t, 8> values = {
       counters_.open_requests,       counters_.open_format_rejects, counters_.open_resource_rejects,
       counters_.open_other_rejects,  counters_.close_requests,      counters_.close_format_rejects,
       counters_.close_other_rejects, counters_.connection_timeouts,
   };
-  if (id >= 1 && id <= values.size()) out.U16(values[id - 1]);
+  if (id >= 1 && id <= values.size()) out.U16Le(values[id - 1]);
 }
 
-ServiceStatus ConnectionManager::ExecuteOther(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus ConnectionManager::ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) {
   switch (request.service) {
     case kServiceForwardOpen:
       return ForwardOpen(request, reply, false);
@@ -114,7 +114,7 @@ DeviceKey ConnectionManager::Key() const {
 // ---- Forward_Open ------------------------------------------------------------------------------------
 
 ServiceStatus ConnectionManager::RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad,
-                                            ByteWriter& reply) {
+                                            base::ByteWriter& reply) {
   if (IsFormatReject(failure)) {
     ++counters_.open_format_rejects;
   } else if (IsResourceReject(failure)) {
@@ -125,7 +125,7 @@ ServiceStatus ConnectionManager::RejectOpen(const ConnectionFailure& failure, co
   return EncodeConnectionFailure(failure, triad, reply);
 }
 
-ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, ByteWriter& reply, bool large) {
+ServiceStatus ConnectionManager::ForwardOpen(const ServiceRequest& service, base::ByteWriter& reply, bool large) {
   ++counters_.open_requests;
   const Decoded<ForwardOpenRequest> decoded = DecodeForwardOpen(service.data, large);
   const ForwardOpenRequest& request = decoded.request;
@@ -344,7 +344,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
         producer.multicast = true;
         producer.multicast_index = opening.multicast_index;
         producer.connection_id = NewConnectionId();
-        producer.to = Ipv4Endpoint{opening.multicast_group, kIoPort};
+        producer.to = Ipv4Endpoint{base::Ipv4Address(opening.multicast_group), kIoPort};
       } else {
         producer.connection_id = request.t_to_o_connection_id;
         const bool port_given = context.request_t_to_o && context.request_t_to_o->port != 0;
@@ -356,7 +356,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
     connection.t_to_o_id = producer.connection_id;
     connection.t_to_o_api = producer.api;
     if (producer.multicast) {
-      context.reply_t_to_o = SocketAddress{SocketAddress::kAfInet, kIoPort, producer.to.address};
+      context.reply_t_to_o = SocketAddress{SocketAddress::kAfInet, kIoPort, producer.to.address.HostOrder()};
     }
   }
   connection.open = true;
@@ -370,7 +370,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
 
 // ---- Forward_Close and closing -----------------------------------------------------------------------
 
-ServiceStatus ConnectionManager::ForwardClose(const ServiceRequest& service, ByteWriter& reply) {
+ServiceStatus ConnectionManager::ForwardClose(const ServiceRequest& service, base::ByteWriter& reply) {
   ++counters_.close_requests;
   const Decoded<ForwardCloseRequest> decoded = DecodeForwardClose(service.data);
   const ConnectionTriad& triad = decoded.request.triad;
@@ -506,7 +506,7 @@ bool ConnectionManager::IsOwned(std::uint32_t consumed_point) const {
   });
 }
 
-bool ConnectionManager::OwnedByAnotherOriginator(std::uint32_t originator_address) const {
+bool ConnectionManager::OwnedByAnotherOriginator(base::Ipv4Address originator_address) const {
   return std::any_of(connections_.begin(), connections_.end(), [&](const Connection& c) {
     return c.open && c.transport_class == 1 && c.kind == IoConnectionKind::kExclusiveOwner &&
            c.originator_address != originator_address;

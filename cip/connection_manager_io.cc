@@ -37,13 +37,13 @@ void ConnectionManager::OnIoDatagram(std::span<const std::uint8_t> bytes, Ipv4En
   connection->last_encapsulation_sequence = datagram->encapsulation_sequence;
   connection->deadline = now + connection->timeout;
 
-  ByteReader in(datagram->data);
-  const std::uint16_t sequence = in.U16();
+  base::ByteReader in(datagram->data);
+  const std::uint16_t sequence = in.U16Le();
   if (connection->received && !SequenceAfter16(sequence, connection->last_sequence)) return;  // no new data
   connection->received = true;
   connection->last_sequence = sequence;
   if (connection->has_header) {
-    const bool run = (in.U32() & kRunBit) != 0;
+    const bool run = (in.U32Le() & kRunBit) != 0;
     if (run != connection->run) {
       connection->run = run;
       if (events_ != nullptr) events_->OnRunIdleChanged(InfoOf(*connection), run);
@@ -75,14 +75,14 @@ bool ConnectionManager::TakeDueProduction(hal::Micros now, IoDatagram& out) {
   if (due == nullptr) return false;
   ++due->encapsulation_sequence;
   ++due->sequence;  // every production carries new data (the consumer never has to compare bytes)
-  ByteWriter writer(datagram_);
-  writer.U16(2);  // item count
+  base::ByteWriter writer(datagram_);
+  writer.U16Le(2);  // item count
   const std::size_t address_at = BeginCpfItem(writer, CpfItemType::kSequencedAddress);
-  writer.U32(due->connection_id);
-  writer.U32(due->encapsulation_sequence);
+  writer.U32Le(due->connection_id);
+  writer.U32Le(due->encapsulation_sequence);
   FinishCpfItem(writer, address_at);
   const std::size_t data_at = BeginCpfItem(writer, CpfItemType::kConnectedData);
-  writer.U16(due->sequence);
+  writer.U16Le(due->sequence);
   // The application writes straight into the datagram (at most kMaxIoData bytes: checked at open).
   const std::span<std::uint8_t> data = writer.Tail().first(due->size);
   std::fill(data.begin(), data.end(), std::uint8_t{0});
@@ -147,8 +147,8 @@ std::size_t ConnectionManager::HandleConnected(std::uint32_t connection_id, std:
   if (capacity <= kSequenceCountSize) return 0;
   const std::uint32_t t_to_o_id = connection.t_to_o_id;
   const int slot = connection.explicit_slot;
-  ByteWriter out(reply.first(capacity));
-  out.U16(sequence_count);
+  base::ByteWriter out(reply.first(capacity));
+  out.U16Le(sequence_count);
   const std::size_t size = router_.Handle(request, context, out.Tail(), 0);
   // Deferred: nothing is kept, the retry executes the request again (and then stores its reply).
   if (context.pending) return 0;

@@ -21,8 +21,8 @@ bool IsDiscovery(std::uint16_t command) {
 }
 
 // Patches the header's length field once the reply data is written.
-std::size_t FinishReply(ByteWriter& out) {
-  out.PatchU16(2, static_cast<std::uint16_t>(out.size() - kEncapsulationHeaderSize));
+std::size_t FinishReply(base::ByteWriter& out) {
+  out.PatchU16Le(2, static_cast<std::uint16_t>(out.size() - kEncapsulationHeaderSize));
   return out.ok() ? out.size() : 0;
 }
 
@@ -30,7 +30,7 @@ std::size_t DiscoveryReply(const EncapsulationHeader& request, const DiscoverySo
                            std::span<std::uint8_t> buffer) {
   // The discovery requests carry no data.
   if (request.length != 0) return EncodeEmptyReply(request, EncapStatus::kInvalidLength, buffer);
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeEncapsulationHeader(ReplyHeaderFor(request, EncapStatus::kSuccess), out);
   if (request.command == Cmd(EncapCommand::kListIdentity)) {
     EncodeListIdentityData(discovery.ListIdentity(), out);
@@ -45,7 +45,7 @@ std::size_t DiscoveryReply(const EncapsulationHeader& request, const DiscoverySo
 }  // namespace
 
 std::size_t EncodeEmptyReply(const EncapsulationHeader& request, EncapStatus status, std::span<std::uint8_t> out) {
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   EncodeEncapsulationHeader(ReplyHeaderFor(request, status), writer);
   return writer.ok() ? writer.size() : 0;
 }
@@ -179,9 +179,9 @@ TcpStep EncapsulationServer::Answer(Connection& connection, hal::Micros now) {
 std::size_t EncapsulationServer::RegisterSession(Connection& connection, const EncapsulationHeader& request,
                                                  std::span<const std::uint8_t> body) {
   if (body.size() != 4) return EncodeEmptyReply(request, EncapStatus::kInvalidLength, tcp_reply_);
-  ByteReader in(body);
-  const std::uint16_t version = in.U16();
-  const std::uint16_t options = in.U16();
+  base::ByteReader in(body);
+  const std::uint16_t version = in.U16Le();
+  const std::uint16_t options = in.U16Le();
   EncapsulationHeader reply = ReplyHeaderFor(request, EncapStatus::kSuccess);
   reply.length = 4;
   std::uint16_t reply_version = version;
@@ -203,10 +203,10 @@ std::size_t EncapsulationServer::RegisterSession(Connection& connection, const E
       session_marks_.NoteTaken(session_count());
     }
   }
-  ByteWriter out(tcp_reply_);
+  base::ByteWriter out(tcp_reply_);
   EncodeEncapsulationHeader(reply, out);
-  out.U16(reply_version);
-  out.U16(options);
+  out.U16Le(reply_version);
+  out.U16Le(options);
   return out.ok() ? out.size() : 0;
 }
 
@@ -236,12 +236,12 @@ std::size_t EncapsulationServer::SendRRData(Connection& connection, const Encaps
   context.request_o_to_t = message->o_to_t;
   context.request_t_to_o = message->t_to_o;
 
-  ByteWriter out(tcp_reply_);
+  base::ByteWriter out(tcp_reply_);
   EncodeEncapsulationHeader(ReplyHeaderFor(request, EncapStatus::kSuccess), out);
-  out.U32(0);  // interface handle
-  out.U16(0);  // timeout
+  out.U32Le(0);  // interface handle
+  out.U16Le(0);  // timeout
   const std::size_t count_at = out.size();
-  out.U16(2);
+  out.U16Le(2);
   FinishCpfItem(out, BeginCpfItem(out, CpfItemType::kNullAddress));
   const std::size_t data_at = BeginCpfItem(out, CpfItemType::kUnconnectedData);
   const std::span<std::uint8_t> tail = out.Tail();
@@ -258,7 +258,7 @@ std::size_t EncapsulationServer::SendRRData(Connection& connection, const Encaps
     EncodeSockaddrItem(out, CpfItemType::kSockaddrTtoO, *context.reply_t_to_o);
     ++count;
   }
-  out.PatchU16(count_at, count);
+  out.PatchU16Le(count_at, count);
   return FinishReply(out);
 }
 
@@ -270,14 +270,14 @@ std::size_t EncapsulationServer::SendUnitData(Connection& connection, const Enca
   if (!message.ok()) return EncodeEmptyReply(request, EncapStatus::kIncorrectData, tcp_reply_);
   if (connected_ == nullptr) return 0;  // no connection manager: no class 3 connection can exist
 
-  ByteWriter out(tcp_reply_);
+  base::ByteWriter out(tcp_reply_);
   EncodeEncapsulationHeader(ReplyHeaderFor(request, EncapStatus::kSuccess), out);
-  out.U32(0);  // interface handle
-  out.U16(0);  // timeout
-  out.U16(2);  // item count
+  out.U32Le(0);  // interface handle
+  out.U16Le(0);  // timeout
+  out.U16Le(2);  // item count
   const std::size_t address_at = BeginCpfItem(out, CpfItemType::kConnectedAddress);
   const std::size_t connection_id_at = out.size();
-  out.U32(0);
+  out.U32Le(0);
   FinishCpfItem(out, address_at);
   const std::size_t data_at = BeginCpfItem(out, CpfItemType::kConnectedData);
   if (!out.ok()) return 0;
@@ -287,7 +287,7 @@ std::size_t EncapsulationServer::SendUnitData(Connection& connection, const Enca
   if (size == 0) return 0;
   out.Advance(size);
   FinishCpfItem(out, data_at);
-  out.PatchU32(connection_id_at, reply_connection_id);
+  out.PatchU32Le(connection_id_at, reply_connection_id);
   return FinishReply(out);
 }
 

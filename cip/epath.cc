@@ -85,7 +85,7 @@ bool EpathReader::ReadPort(std::uint8_t first, PathSegment& segment) {
   }
   segment.value = first & kPortIdMask;
   if (segment.value == kPortIdExtended) {
-    segment.value = in_.U16();
+    segment.value = in_.U16Le();
     length += 2;
   }
   segment.bytes = in_.Bytes(link_size);
@@ -102,9 +102,9 @@ bool EpathReader::ReadLogical(std::uint8_t first, PathSegment& segment) {
     if (format != 0) return Fail(base::InvalidArgument());
     segment.kind = SegmentKind::kElectronicKey;
     const std::uint8_t key_format = in_.U8();
-    segment.key.vendor_id = in_.U16();
-    segment.key.device_type = in_.U16();
-    segment.key.product_code = in_.U16();
+    segment.key.vendor_id = in_.U16Le();
+    segment.key.device_type = in_.U16Le();
+    segment.key.product_code = in_.U16Le();
     segment.key.major_revision = in_.U8();
     segment.key.minor_revision = in_.U8();
     if (in_.ok() && key_format != kElectronicKeyFormat) return Fail(base::InvalidArgument());
@@ -124,14 +124,14 @@ bool EpathReader::ReadLogical(std::uint8_t first, PathSegment& segment) {
       return true;
     case k16Bit:
       in_.Skip(1);  // pad
-      segment.value = in_.U16();
+      segment.value = in_.U16Le();
       return true;
     case k32Bit:
       // CIP defines the 32-bit format for instance, member and connection point only; for a class or an
       // attribute it is reserved (their IDs are 16-bit), so such a segment is refused like format 3.
       if (type == kLogicalClass || type == kLogicalAttribute) return Fail(base::InvalidArgument());
       in_.Skip(1);  // pad
-      segment.value = in_.U32();
+      segment.value = in_.U32Le();
       return true;
     default:
       return Fail(base::InvalidArgument());
@@ -168,7 +168,7 @@ base::Result<ApplicationPath> DecodeApplicationPath(std::span<const std::uint8_t
   return path;
 }
 
-void EncodeLogicalSegment(SegmentKind kind, std::uint32_t value, ByteWriter& out) {
+void EncodeLogicalSegment(SegmentKind kind, std::uint32_t value, base::ByteWriter& out) {
   std::uint8_t type = kLogicalClass;
   switch (kind) {
     case SegmentKind::kClass:
@@ -194,15 +194,15 @@ void EncodeLogicalSegment(SegmentKind kind, std::uint32_t value, ByteWriter& out
   } else if (value <= 0xFFFF) {
     out.U8(base | k16Bit);
     out.U8(0);
-    out.U16(static_cast<std::uint16_t>(value));
+    out.U16Le(static_cast<std::uint16_t>(value));
   } else {
     out.U8(base | k32Bit);
     out.U8(0);
-    out.U32(value);
+    out.U32Le(value);
   }
 }
 
-void EncodePortSegment(std::uint16_t port, std::span<const std::uint8_t> link_address, ByteWriter& out) {
+void EncodePortSegment(std::uint16_t port, std::span<const std::uint8_t> link_address, base::ByteWriter& out) {
   const bool extended_link = link_address.size() != 1;
   const bool extended_port = port >= kPortIdExtended;
   std::uint8_t first = extended_port ? kPortIdExtended : static_cast<std::uint8_t>(port);
@@ -214,7 +214,7 @@ void EncodePortSegment(std::uint16_t port, std::span<const std::uint8_t> link_ad
     ++length;
   }
   if (extended_port) {
-    out.U16(port);
+    out.U16Le(port);
     length += 2;
   }
   out.Bytes(link_address);

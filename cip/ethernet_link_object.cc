@@ -41,44 +41,44 @@ constexpr std::uint16_t kControlFullDuplex = 0x0002;
 
 LinkPort PortOf(std::uint32_t instance) { return instance == 2 ? LinkPort::kRight : LinkPort::kLeft; }
 
-void PutCounters(const InterfaceCounters& c, ByteWriter& out) {
+void PutCounters(const InterfaceCounters& c, base::ByteWriter& out) {
   for (std::uint32_t value : {c.in_octets, c.in_ucast_packets, c.in_nucast_packets, c.in_discards, c.in_errors,
                               c.in_unknown_protos, c.out_octets, c.out_ucast_packets, c.out_nucast_packets,
                               c.out_discards, c.out_errors}) {
-    out.U32(value);
+    out.U32Le(value);
   }
 }
 
-void PutMedia(const MediaCounters& m, ByteWriter& out) {
+void PutMedia(const MediaCounters& m, base::ByteWriter& out) {
   for (std::uint32_t value : {m.alignment_errors, m.fcs_errors, m.single_collisions, m.multiple_collisions,
                               m.sqe_test_errors, m.deferred_transmissions, m.late_collisions,
                               m.excessive_collisions, m.mac_transmit_errors, m.carrier_sense_errors,
                               m.frame_too_long, m.mac_receive_errors}) {
-    out.U32(value);
+    out.U32Le(value);
   }
 }
 
-void PutInterfaceControl(LinkSetting setting, ByteWriter& out) {
+void PutInterfaceControl(LinkSetting setting, base::ByteWriter& out) {
   switch (setting) {
     case LinkSetting::kAuto:
-      out.U16(kControlAutoNegotiate);
-      out.U16(0);
+      out.U16Le(kControlAutoNegotiate);
+      out.U16Le(0);
       return;
     case LinkSetting::k10Full:
-      out.U16(kControlFullDuplex);
-      out.U16(10);
+      out.U16Le(kControlFullDuplex);
+      out.U16Le(10);
       return;
     case LinkSetting::k10Half:
-      out.U16(0);
-      out.U16(10);
+      out.U16Le(0);
+      out.U16Le(10);
       return;
     case LinkSetting::k100Full:
-      out.U16(kControlFullDuplex);
-      out.U16(100);
+      out.U16Le(kControlFullDuplex);
+      out.U16Le(100);
       return;
     case LinkSetting::k100Half:
-      out.U16(0);
-      out.U16(100);
+      out.U16Le(0);
+      out.U16Le(100);
       return;
   }
 }
@@ -99,17 +99,17 @@ EthernetLinkObject::EthernetLinkObject(const DeviceInfoProvider& device, Etherne
 
 std::span<const AttributeSpec> EthernetLinkObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void EthernetLinkObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) {
+void EthernetLinkObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) {
   const LinkPort port = PortOf(instance);
   switch (id) {
     case 1:
-      out.U32(links_.State(port).speed_mbps);
+      out.U32Le(links_.State(port).speed_mbps);
       break;
     case 2:
-      out.U32(EncodeInterfaceFlags(links_.State(port)));
+      out.U32Le(EncodeInterfaceFlags(links_.State(port)));
       break;
     case 3:
-      out.Bytes(device_.Mac());
+      device_.Mac().Write(out);
       break;
     case kAttributeInterfaceCounters:
       PutCounters(links_.Counters(port), out);
@@ -139,12 +139,12 @@ void EthernetLinkObject::GetInstanceAttribute(std::uint32_t instance, std::uint1
   }
 }
 
-ServiceStatus EthernetLinkObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteReader& value) {
+ServiceStatus EthernetLinkObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteReader& value) {
   if (id != 6) return Error(GeneralStatus::kAttributeNotSettable);
   const ServiceStatus size = ExpectSize(value, 4);
   if (!size.ok()) return size;
-  const std::uint16_t control = value.U16();
-  const std::uint16_t speed = value.U16();
+  const std::uint16_t control = value.U16Le();
+  const std::uint16_t speed = value.U16Le();
   const bool full = (control & kControlFullDuplex) != 0;
   LinkSetting setting = LinkSetting::kAuto;
   if (control == kControlAutoNegotiate && speed == 0) {
@@ -159,7 +159,7 @@ ServiceStatus EthernetLinkObject::SetInstanceAttribute(std::uint32_t, std::uint1
   return StoreResult(links_.StoreSetting(setting));
 }
 
-ServiceStatus EthernetLinkObject::ExecuteOther(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus EthernetLinkObject::ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) {
   if (request.service != kServiceGetAndClear) return Error(GeneralStatus::kServiceNotSupported);
   const std::uint32_t id = request.path.attribute.value_or(0);
   if (id != kAttributeInterfaceCounters && id != kAttributeMediaCounters) {

@@ -38,18 +38,18 @@ RequestOrigin OriginOf(const ServiceRequest& request) {
 
 }  // namespace
 
-void PutStringI(std::string_view text, ByteWriter& out) {
+void PutStringI(std::string_view text, base::ByteWriter& out) {
   out.U8(1);
   out.Bytes(std::span(reinterpret_cast<const std::uint8_t*>("eng"), 3));
   out.U8(kShortStringType);
-  out.U16(kCharacterSetIso8859_1);
+  out.U16Le(kCharacterSetIso8859_1);
   PutShortString(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), std::min<std::size_t>(text.size(), 255)),
                  out);
 }
 
 FileObject::FileObject(const ServedFile& file) : file_(file), object_(kFileClass, *this), front_(*this) {}
 
-ServiceStatus FileObject::Front::Execute(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus FileObject::Front::Execute(const ServiceRequest& request, base::ByteWriter& reply) {
   if (request.context != nullptr) owner_.now_ = request.context->now;
   return owner_.object_.Execute(request, reply);
 }
@@ -62,7 +62,7 @@ FileState FileObject::state(hal::Micros now) const {
   return upload_.sent_any ? FileState::kUploadInProgress : FileState::kUploadInitiated;
 }
 
-void FileObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void FileObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case 1:
       out.U8(static_cast<std::uint8_t>(state(now_)));
@@ -71,7 +71,7 @@ void FileObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWrite
       PutStringI(kInstanceName, out);
       break;
     case 3:
-      out.U16(kInstanceFormatVersion);
+      out.U16Le(kInstanceFormatVersion);
       break;
     case 4:
       PutStringI(file_.name, out);
@@ -81,10 +81,10 @@ void FileObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWrite
       out.U8(file_.minor_revision);
       break;
     case 6:
-      out.U32(file_.content->Size());
+      out.U32Le(file_.content->Size());
       break;
     case 7:
-      out.U16(file_.content->Checksum());
+      out.U16Le(file_.content->Checksum());
       break;
     case 8:
       out.U8(kInvocationNotApplicable);
@@ -103,14 +103,14 @@ void FileObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWrite
   }
 }
 
-void FileObject::GetClassAttribute(std::uint16_t id, ByteWriter& out) {
+void FileObject::GetClassAttribute(std::uint16_t id, base::ByteWriter& out) {
   if (id != 32 || file_.content == nullptr) return;
-  out.U16(static_cast<std::uint16_t>(kEdsFileInstance));
+  out.U16Le(static_cast<std::uint16_t>(kEdsFileInstance));
   PutStringI(kInstanceName, out);
   PutStringI(file_.name, out);
 }
 
-ServiceStatus FileObject::ExecuteOther(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus FileObject::ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) {
   if (request.service == kServiceInitiateUpload) return InitiateUpload(request, reply);
   if (request.service == kServiceUploadTransfer) return UploadTransfer(request, reply);
   return Error(GeneralStatus::kServiceNotSupported);
@@ -124,8 +124,8 @@ bool FileObject::UploadOwnedBy(std::uint32_t session, hal::Micros now) const {
   return upload_.active && upload_.session == session && now - upload_.last_request < kFileUploadIdleLimit;
 }
 
-ServiceStatus FileObject::InitiateUpload(const ServiceRequest& request, ByteWriter& reply) {
-  ByteReader in(request.data);
+ServiceStatus FileObject::InitiateUpload(const ServiceRequest& request, base::ByteWriter& reply) {
+  base::ByteReader in(request.data);
   std::uint8_t transfer_size = 0;
   if (ServiceStatus status = ReadExactU8(in, transfer_size); !status.ok()) return status;
   if (transfer_size == 0) return ErrorWithExtended(GeneralStatus::kInvalidParameter, kExtendedFileTransferZeroSize);
@@ -138,13 +138,13 @@ ServiceStatus FileObject::InitiateUpload(const ServiceRequest& request, ByteWrit
   upload_.session = origin.session;
   upload_.last_request = origin.now;
   upload_.transfer_size = transfer_size;
-  reply.U32(file_.content->Size());
+  reply.U32Le(file_.content->Size());
   reply.U8(transfer_size);
   return Success();
 }
 
-ServiceStatus FileObject::UploadTransfer(const ServiceRequest& request, ByteWriter& reply) {
-  ByteReader in(request.data);
+ServiceStatus FileObject::UploadTransfer(const ServiceRequest& request, base::ByteWriter& reply) {
+  base::ByteReader in(request.data);
   std::uint8_t number = 0;
   if (ServiceStatus status = ReadExactU8(in, number); !status.ok()) return status;
   const RequestOrigin origin = OriginOf(request);
@@ -173,7 +173,7 @@ ServiceStatus FileObject::UploadTransfer(const ServiceRequest& request, ByteWrit
   return Success();
 }
 
-void FileObject::WritePacket(std::uint8_t number, std::uint32_t offset, ByteWriter& reply) const {
+void FileObject::WritePacket(std::uint8_t number, std::uint32_t offset, base::ByteWriter& reply) const {
   const std::uint32_t size = file_.content->Size();
   const std::uint32_t length = std::min<std::uint32_t>(upload_.transfer_size, size - offset);
   const bool first = offset == 0;
@@ -194,7 +194,7 @@ void FileObject::WritePacket(std::uint8_t number, std::uint32_t offset, ByteWrit
     return;
   }
   reply.Advance(length);
-  if (last) reply.U16(file_.content->Checksum());
+  if (last) reply.U16Le(file_.content->Checksum());
 }
 
 }  // namespace cip

@@ -9,7 +9,7 @@ constexpr std::uint8_t kEthernetIpPort = 2;  // the card's one CIP port
 constexpr std::uint8_t kCompatibilityBit = 0x80;
 
 template <typename Request>
-Decoded<Request> Frame(ByteReader& in, std::size_t path_words, Decoded<Request> decoded) {
+Decoded<Request> Frame(base::ByteReader& in, std::size_t path_words, Decoded<Request> decoded) {
   decoded.request.connection_path = in.Bytes(2 * path_words);
   if (!in.ok()) {
     decoded.framing = RequestFraming::kPathShort;
@@ -21,18 +21,18 @@ Decoded<Request> Frame(ByteReader& in, std::size_t path_words, Decoded<Request> 
   return decoded;
 }
 
-ConnectionTriad ReadTriad(ByteReader& in) {
+ConnectionTriad ReadTriad(base::ByteReader& in) {
   ConnectionTriad triad;
-  triad.connection_serial = in.U16();
-  triad.originator_vendor = in.U16();
-  triad.originator_serial = in.U32();
+  triad.connection_serial = in.U16Le();
+  triad.originator_vendor = in.U16Le();
+  triad.originator_serial = in.U32Le();
   return triad;
 }
 
-void WriteTriad(const ConnectionTriad& triad, ByteWriter& out) {
-  out.U16(triad.connection_serial);
-  out.U16(triad.originator_vendor);
-  out.U32(triad.originator_serial);
+void WriteTriad(const ConnectionTriad& triad, base::ByteWriter& out) {
+  out.U16Le(triad.connection_serial);
+  out.U16Le(triad.originator_vendor);
+  out.U32Le(triad.originator_serial);
 }
 
 }  // namespace
@@ -90,18 +90,18 @@ Decoded<ForwardOpenRequest> DecodeForwardOpen(std::span<const std::uint8_t> data
   ForwardOpenRequest& request = decoded.request;
   request.large = large;
   if (data.size() < (large ? kLargeForwardOpenFixedSize : kForwardOpenFixedSize)) return decoded;
-  ByteReader in(data);
+  base::ByteReader in(data);
   request.priority_tick = in.U8();
   request.timeout_ticks = in.U8();
-  request.o_to_t_connection_id = in.U32();
-  request.t_to_o_connection_id = in.U32();
+  request.o_to_t_connection_id = in.U32Le();
+  request.t_to_o_connection_id = in.U32Le();
   request.triad = ReadTriad(in);
   request.timeout_multiplier = in.U8();
   in.Skip(3);
-  request.o_to_t_rpi = in.U32();
-  request.o_to_t = large ? DecodeNetworkParameters32(in.U32()) : DecodeNetworkParameters16(in.U16());
-  request.t_to_o_rpi = in.U32();
-  request.t_to_o = large ? DecodeNetworkParameters32(in.U32()) : DecodeNetworkParameters16(in.U16());
+  request.o_to_t_rpi = in.U32Le();
+  request.o_to_t = large ? DecodeNetworkParameters32(in.U32Le()) : DecodeNetworkParameters16(in.U16Le());
+  request.t_to_o_rpi = in.U32Le();
+  request.t_to_o = large ? DecodeNetworkParameters32(in.U32Le()) : DecodeNetworkParameters16(in.U16Le());
   request.transport = DecodeTransportClassTrigger(in.U8());
   const std::size_t path_words = in.U8();
   return Frame(in, path_words, decoded);
@@ -110,7 +110,7 @@ Decoded<ForwardOpenRequest> DecodeForwardOpen(std::span<const std::uint8_t> data
 Decoded<ForwardCloseRequest> DecodeForwardClose(std::span<const std::uint8_t> data) {
   Decoded<ForwardCloseRequest> decoded;
   if (data.size() < kForwardCloseFixedSize) return decoded;
-  ByteReader in(data);
+  base::ByteReader in(data);
   decoded.request.priority_tick = in.U8();
   decoded.request.timeout_ticks = in.U8();
   decoded.request.triad = ReadTriad(in);
@@ -119,32 +119,32 @@ Decoded<ForwardCloseRequest> DecodeForwardClose(std::span<const std::uint8_t> da
   return Frame(in, path_words, decoded);
 }
 
-void EncodeForwardOpen(const ForwardOpenRequest& request, ByteWriter& out) {
+void EncodeForwardOpen(const ForwardOpenRequest& request, base::ByteWriter& out) {
   out.U8(request.priority_tick);
   out.U8(request.timeout_ticks);
-  out.U32(request.o_to_t_connection_id);
-  out.U32(request.t_to_o_connection_id);
+  out.U32Le(request.o_to_t_connection_id);
+  out.U32Le(request.t_to_o_connection_id);
   WriteTriad(request.triad, out);
   out.U8(request.timeout_multiplier);
   out.Zeros(3);
-  out.U32(request.o_to_t_rpi);
+  out.U32Le(request.o_to_t_rpi);
   if (request.large) {
-    out.U32(EncodeNetworkParameters32(request.o_to_t));
+    out.U32Le(EncodeNetworkParameters32(request.o_to_t));
   } else {
-    out.U16(EncodeNetworkParameters16(request.o_to_t));
+    out.U16Le(EncodeNetworkParameters16(request.o_to_t));
   }
-  out.U32(request.t_to_o_rpi);
+  out.U32Le(request.t_to_o_rpi);
   if (request.large) {
-    out.U32(EncodeNetworkParameters32(request.t_to_o));
+    out.U32Le(EncodeNetworkParameters32(request.t_to_o));
   } else {
-    out.U16(EncodeNetworkParameters16(request.t_to_o));
+    out.U16Le(EncodeNetworkParameters16(request.t_to_o));
   }
   out.U8(EncodeTransportClassTrigger(request.transport));
   out.U8(static_cast<std::uint8_t>(request.connection_path.size() / 2));
   out.Bytes(request.connection_path);
 }
 
-void EncodeForwardClose(const ForwardCloseRequest& request, ByteWriter& out) {
+void EncodeForwardClose(const ForwardCloseRequest& request, base::ByteWriter& out) {
   out.U8(request.priority_tick);
   out.U8(request.timeout_ticks);
   WriteTriad(request.triad, out);
@@ -248,12 +248,12 @@ ConnectionFailure ConnectionFailure::General(GeneralStatus general) {
 }
 
 ServiceStatus EncodeConnectionFailure(const ConnectionFailure& failure, const ConnectionTriad& triad,
-                                      ByteWriter& reply) {
+                                      base::ByteWriter& reply) {
   ServiceStatus status = Error(failure.general);
   status.keep_reply_data = true;
   if (failure.extended != 0) {
-    reply.U16(failure.extended);
-    for (std::size_t i = 0; i < failure.extra_count && i < failure.extra.size(); ++i) reply.U16(failure.extra[i]);
+    reply.U16Le(failure.extended);
+    for (std::size_t i = 0; i < failure.extra_count && i < failure.extra.size(); ++i) reply.U16Le(failure.extra[i]);
     status.additional_words_in_data = static_cast<std::uint8_t>(1 + failure.extra_count);
   }
   WriteTriad(triad, reply);
@@ -262,17 +262,17 @@ ServiceStatus EncodeConnectionFailure(const ConnectionFailure& failure, const Co
   return status;
 }
 
-void EncodeForwardOpenSuccess(const ForwardOpenSuccess& success, ByteWriter& reply) {
-  reply.U32(success.o_to_t_connection_id);
-  reply.U32(success.t_to_o_connection_id);
+void EncodeForwardOpenSuccess(const ForwardOpenSuccess& success, base::ByteWriter& reply) {
+  reply.U32Le(success.o_to_t_connection_id);
+  reply.U32Le(success.t_to_o_connection_id);
   WriteTriad(success.triad, reply);
-  reply.U32(success.o_to_t_api);
-  reply.U32(success.t_to_o_api);
+  reply.U32Le(success.o_to_t_api);
+  reply.U32Le(success.t_to_o_api);
   reply.U8(0);  // application reply size (words)
   reply.U8(0);  // reserved
 }
 
-void EncodeForwardCloseSuccess(const ConnectionTriad& triad, ByteWriter& reply) {
+void EncodeForwardCloseSuccess(const ConnectionTriad& triad, base::ByteWriter& reply) {
   WriteTriad(triad, reply);
   reply.U8(0);  // application reply size (words)
   reply.U8(0);  // reserved

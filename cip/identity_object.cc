@@ -30,9 +30,10 @@ std::uint16_t ProductCodeOf(DriveModel model) {
 
 std::string_view ProductNameOf(DriveModel model) { return model == DriveModel::kVfS15 ? "VF-S15" : "VF-MB1"; }
 
-std::uint32_t SerialNumberFromMac(const MacAddress& mac) {
-  return static_cast<std::uint32_t>(mac[2]) << 24 | static_cast<std::uint32_t>(mac[3]) << 16 |
-         static_cast<std::uint32_t>(mac[4]) << 8 | static_cast<std::uint32_t>(mac[5]);
+// The MAC's last four octets, read as one big-endian number.
+std::uint32_t SerialNumberFromMac(const base::MacAddress& mac) {
+  base::ByteReader low(std::span(mac.octets()).subspan(2));
+  return low.U32Be();
 }
 
 std::uint16_t EncodeStatusWord(const DeviceStatus& status) {
@@ -71,26 +72,26 @@ IdentityItem IdentityObject::ListIdentityItem(const SocketAddress& socket_addres
 
 std::span<const AttributeSpec> IdentityObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void IdentityObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void IdentityObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case 1:
-      out.U16(kVendorIdToshiba);
+      out.U16Le(kVendorIdToshiba);
       break;
     case 2:
-      out.U16(kDeviceTypeAcDrive);
+      out.U16Le(kDeviceTypeAcDrive);
       break;
     case 3:
-      out.U16(ProductCode());
+      out.U16Le(ProductCode());
       break;
     case 4:
       out.U8(kMajorRevision);
       out.U8(kMinorRevision);
       break;
     case 5:
-      out.U16(EncodeStatusWord(device_.Status()));
+      out.U16Le(EncodeStatusWord(device_.Status()));
       break;
     case 6:
-      out.U32(SerialNumberFromMac(device_.Mac()));
+      out.U32Le(SerialNumberFromMac(device_.Mac()));
       break;
     case 7:
       PutShortString(Bytes(ProductName()), out);
@@ -100,11 +101,11 @@ void IdentityObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteW
   }
 }
 
-ServiceStatus IdentityObject::ExecuteOther(const ServiceRequest& request, ByteWriter&) {
+ServiceStatus IdentityObject::ExecuteOther(const ServiceRequest& request, base::ByteWriter&) {
   if (request.service != kServiceReset) return Error(GeneralStatus::kServiceNotSupported);
   // The reset type is optional and defaults to 0. Type 2 (keep communication settings) and the
   // vendor-specific range are not offered.
-  ByteReader in(request.data);
+  base::ByteReader in(request.data);
   if (in.remaining() > 1) return Error(GeneralStatus::kTooMuchData);
   const std::uint8_t type = in.empty() ? kResetRestart : in.U8();
   if (type == kResetRestart) {

@@ -14,23 +14,23 @@ base::Result<ReceivedIoDatagram> ParseIoDatagram(std::span<const std::uint8_t> b
       data.type != static_cast<std::uint16_t>(CpfItemType::kConnectedData)) {
     return base::InvalidArgument();
   }
-  ByteReader in(address.data);
+  base::ByteReader in(address.data);
   ReceivedIoDatagram datagram;
-  datagram.connection_id = in.U32();
-  datagram.encapsulation_sequence = in.U32();
+  datagram.connection_id = in.U32Le();
+  datagram.encapsulation_sequence = in.U32Le();
   datagram.data = data.data;
   return datagram;
 }
 
 void EncodeIoDatagram(std::uint32_t connection_id, std::uint32_t encapsulation_sequence, std::uint16_t sequence_count,
-                      std::span<const std::uint8_t> data, ByteWriter& out) {
-  out.U16(2);  // item count
+                      std::span<const std::uint8_t> data, base::ByteWriter& out) {
+  out.U16Le(2);  // item count
   const std::size_t address_at = BeginCpfItem(out, CpfItemType::kSequencedAddress);
-  out.U32(connection_id);
-  out.U32(encapsulation_sequence);
+  out.U32Le(connection_id);
+  out.U32Le(encapsulation_sequence);
   FinishCpfItem(out, address_at);
   const std::size_t data_at = BeginCpfItem(out, CpfItemType::kConnectedData);
-  out.U16(sequence_count);
+  out.U16Le(sequence_count);
   out.Bytes(data);
   FinishCpfItem(out, data_at);
 }

@@ -29,7 +29,7 @@ std::uint16_t CheckRoute(std::span<const std::uint8_t> route) {
 
 // Writes the reply header in front of the data already in `out` (which starts with 4 placeholder
 // bytes), or replaces everything with an error reply.
-std::size_t FinishReply(std::uint8_t request_service, ServiceStatus status, ByteWriter& out) {
+std::size_t FinishReply(std::uint8_t request_service, ServiceStatus status, base::ByteWriter& out) {
   if (!out.ok()) status = Error(GeneralStatus::kReplyDataTooLarge);
   if (status.ok() || (status.keep_reply_data && !status.has_extended)) {
     out.PatchU8(0, static_cast<std::uint8_t>(request_service | kReplyServiceBit));
@@ -46,7 +46,7 @@ std::size_t FinishReply(std::uint8_t request_service, ServiceStatus status, Byte
 }  // namespace
 
 base::Result<MessageRouterRequest> DecodeMessageRouterRequest(std::span<const std::uint8_t> bytes) {
-  ByteReader in(bytes);
+  base::ByteReader in(bytes);
   MessageRouterRequest request;
   request.service = in.U8();
   const std::uint8_t path_words = in.U8();
@@ -56,7 +56,7 @@ base::Result<MessageRouterRequest> DecodeMessageRouterRequest(std::span<const st
   return request;
 }
 
-void EncodeMessageRouterRequest(const MessageRouterRequest& request, ByteWriter& out) {
+void EncodeMessageRouterRequest(const MessageRouterRequest& request, base::ByteWriter& out) {
   out.U8(request.service);
   out.U8(static_cast<std::uint8_t>(request.path.size() / 2));
   out.Bytes(request.path);
@@ -64,7 +64,7 @@ void EncodeMessageRouterRequest(const MessageRouterRequest& request, ByteWriter&
 }
 
 base::Result<MessageRouterReply> DecodeMessageRouterReply(std::span<const std::uint8_t> bytes) {
-  ByteReader in(bytes);
+  base::ByteReader in(bytes);
   MessageRouterReply reply;
   reply.service = in.U8();
   in.Skip(1);  // reserved
@@ -76,17 +76,17 @@ base::Result<MessageRouterReply> DecodeMessageRouterReply(std::span<const std::u
   return reply;
 }
 
-void EncodeErrorReply(std::uint8_t request_service, const ServiceStatus& status, ByteWriter& out) {
+void EncodeErrorReply(std::uint8_t request_service, const ServiceStatus& status, base::ByteWriter& out) {
   out.U8(static_cast<std::uint8_t>(request_service | kReplyServiceBit));
   out.U8(0);
   out.U8(static_cast<std::uint8_t>(status.general));
   out.U8(status.has_extended ? 1 : 0);
-  if (status.has_extended) out.U16(status.extended);
+  if (status.has_extended) out.U16Le(status.extended);
 }
 
 std::size_t MessageRouter::Handle(std::span<const std::uint8_t> request_bytes, RequestContext& context,
                                   std::span<std::uint8_t> reply, int depth) {
-  ByteWriter out(reply);
+  base::ByteWriter out(reply);
   const base::Result<MessageRouterRequest> request = DecodeMessageRouterRequest(request_bytes);
   const std::uint8_t service = request_bytes.empty() ? 0 : request_bytes[0];
   if (!request.ok()) {
@@ -121,7 +121,7 @@ std::size_t MessageRouter::Handle(std::span<const std::uint8_t> request_bytes, R
 }
 
 ServiceStatus MessageRouter::Dispatch(const MessageRouterRequest& request, const ApplicationPath& path,
-                                      RequestContext& context, ByteWriter& reply) {
+                                      RequestContext& context, base::ByteWriter& reply) {
   CipObject* object = objects_.Find(path.class_id);
   if (object == nullptr) return Error(GeneralStatus::kPathDestinationUnknown);
   if (!object->HasInstance(path.instance)) return Error(GeneralStatus::kObjectDoesNotExist);
@@ -142,9 +142,9 @@ ServiceStatus MessageRouter::Dispatch(const MessageRouterRequest& request, const
 }
 
 ServiceStatus MessageRouter::MultipleServicePacket(std::span<const std::uint8_t> data, RequestContext& context,
-                                                   ByteWriter& reply, int depth) {
-  ByteReader in(data);
-  const std::uint16_t count = in.U16();
+                                                   base::ByteWriter& reply, int depth) {
+  base::ByteReader in(data);
+  const std::uint16_t count = in.U16Le();
   if (!in.ok() || in.remaining() < 2U * count) return Error(GeneralStatus::kNotEnoughData);
   const std::size_t table_end = 2 + 2U * count;
 
@@ -152,21 +152,21 @@ ServiceStatus MessageRouter::MultipleServicePacket(std::span<const std::uint8_t>
   // (the last one to the end). They must lie inside the data and go strictly up.
   std::size_t previous = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t offset = in.U16();
+    const std::size_t offset = in.U16Le();
     if (offset < table_end || offset >= data.size()) return Error(GeneralStatus::kNotEnoughData);
     if (offset <= previous) return Error(GeneralStatus::kInvalidParameter);
     previous = offset;
   }
 
   const std::size_t base = reply.size();
-  reply.U16(count);
+  reply.U16Le(count);
   reply.Zeros(2U * count);
   bool any_failed = false;
   for (std::size_t i = 0; i < count && reply.ok(); ++i) {
-    ByteReader offsets(data.subspan(2 + 2 * i));
-    const std::size_t start = offsets.U16();
-    const std::size_t end = i + 1 < count ? offsets.U16() : data.size();
-    reply.PatchU16(base + 2 + 2 * i, static_cast<std::uint16_t>(reply.size() - base));
+    base::ByteReader offsets(data.subspan(2 + 2 * i));
+    const std::size_t start = offsets.U16Le();
+    const std::size_t end = i + 1 < count ? offsets.U16Le() : data.size();
+    reply.PatchU16Le(base + 2 + 2 * i, static_cast<std::uint16_t>(reply.size() - base));
     const std::size_t size = Handle(data.subspan(start, end - start), context, reply.Tail(), depth + 1);
     // A deferred member defers the whole packet: the retry runs every member again from the first.
     if (context.pending) return Success();
@@ -183,10 +183,10 @@ ServiceStatus MessageRouter::MultipleServicePacket(std::span<const std::uint8_t>
 
 std::size_t MessageRouter::UnconnectedSend(const MessageRouterRequest& request, RequestContext& context,
                                            std::span<std::uint8_t> reply, int depth) {
-  ByteWriter out(reply);
-  ByteReader in(request.data);
+  base::ByteWriter out(reply);
+  base::ByteReader in(request.data);
   in.Skip(2);  // priority/time tick and timeout ticks: the card answers at once
-  const std::uint16_t embedded_size = in.U16();
+  const std::uint16_t embedded_size = in.U16Le();
   const std::span<const std::uint8_t> embedded = in.Bytes(embedded_size);
   if (embedded_size % 2 != 0) in.Skip(1);  // pad byte
   const std::uint8_t route_words = in.U8();

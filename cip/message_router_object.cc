@@ -23,9 +23,9 @@ MessageRouterObject::MessageRouterObject(const ConnectionCountProvider* connecti
 
 std::span<const AttributeSpec> MessageRouterObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void MessageRouterObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
-  if (id == 2) out.U16(kMaxCipConnections);
-  if (id == 3) out.U16(connections_ != nullptr ? connections_->ActiveConnections() : 0);
+void MessageRouterObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
+  if (id == 2) out.U16Le(kMaxCipConnections);
+  if (id == 3) out.U16Le(connections_ != nullptr ? connections_->ActiveConnections() : 0);
 }
 
 }  // namespace cip

@@ -10,9 +10,9 @@ bool Contains(std::span<const T> values, T value) {
   return std::find(values.begin(), values.end(), value) != values.end();
 }
 
-void PutIdList(std::span<const std::uint16_t> ids, ByteWriter& out) {
-  out.U16(static_cast<std::uint16_t>(ids.size()));
-  for (std::uint16_t id : ids) out.U16(id);
+void PutIdList(std::span<const std::uint16_t> ids, base::ByteWriter& out) {
+  out.U16Le(static_cast<std::uint16_t>(ids.size()));
+  for (std::uint16_t id : ids) out.U16Le(id);
 }
 
 }  // namespace
@@ -46,7 +46,7 @@ bool AttributeObject::SupportsService(std::uint32_t instance, std::uint8_t servi
   return Contains(instance == 0 ? spec_.class_services : spec_.instance_services, service);
 }
 
-ServiceStatus AttributeObject::Execute(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus AttributeObject::Execute(const ServiceRequest& request, base::ByteWriter& reply) {
   switch (request.service) {
     case kServiceGetAttributesAll:
       if (!request.data.empty()) return Error(GeneralStatus::kTooMuchData);
@@ -60,7 +60,7 @@ ServiceStatus AttributeObject::Execute(const ServiceRequest& request, ByteWriter
   }
 }
 
-ServiceStatus AttributeObject::GetAttributesAll(std::uint32_t instance, ByteWriter& reply) {
+ServiceStatus AttributeObject::GetAttributesAll(std::uint32_t instance, base::ByteWriter& reply) {
   if (instance == 0) {
     for (std::uint16_t id : spec_.class_attributes) {
       if (id <= 7) {
@@ -77,7 +77,7 @@ ServiceStatus AttributeObject::GetAttributesAll(std::uint32_t instance, ByteWrit
   return Success();
 }
 
-ServiceStatus AttributeObject::GetAttributeSingle(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus AttributeObject::GetAttributeSingle(const ServiceRequest& request, base::ByteWriter& reply) {
   if (!request.path.attribute) return Error(GeneralStatus::kAttributeNotSupported);
   const std::uint32_t id = *request.path.attribute;
   if (request.path.instance == 0) {
@@ -116,22 +116,22 @@ ServiceStatus AttributeObject::SetAttributeSingle(const ServiceRequest& request)
     return Error(GeneralStatus::kAttributeNotSupported);
   }
   if (attribute->access != Access::kGetSet) return Error(GeneralStatus::kAttributeNotSettable);
-  ByteReader value(request.data);
+  base::ByteReader value(request.data);
   return handler_.SetInstanceAttribute(request.path.instance, attribute->id, value);
 }
 
 bool AttributeObject::HasClassAttribute(std::uint16_t id) const { return Contains(spec_.class_attributes, id); }
 
-void AttributeObject::GetCommonClassAttribute(std::uint16_t id, ByteWriter& out) {
+void AttributeObject::GetCommonClassAttribute(std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case 1:
-      out.U16(spec_.revision);
+      out.U16Le(spec_.revision);
       break;
     case 2:
-      out.U16(static_cast<std::uint16_t>(handler_.MaxInstance()));
+      out.U16Le(static_cast<std::uint16_t>(handler_.MaxInstance()));
       break;
     case 3:
-      out.U16(static_cast<std::uint16_t>(handler_.InstanceCount()));
+      out.U16Le(static_cast<std::uint16_t>(handler_.InstanceCount()));
       break;
     case 4:
       PutIdList(spec_.optional_attributes, out);
@@ -140,37 +140,37 @@ void AttributeObject::GetCommonClassAttribute(std::uint16_t id, ByteWriter& out)
       PutIdList(spec_.optional_services, out);
       break;
     case 6:
-      out.U16(spec_.max_class_attribute);
+      out.U16Le(spec_.max_class_attribute);
       break;
     case 7:
-      out.U16(spec_.max_instance_attribute);
+      out.U16Le(spec_.max_instance_attribute);
       break;
     default:
       break;
   }
 }
 
-ServiceStatus ExpectSize(const ByteReader& in, std::size_t size) {
+ServiceStatus ExpectSize(const base::ByteReader& in, std::size_t size) {
   if (in.remaining() < size) return Error(GeneralStatus::kNotEnoughData);
   if (in.remaining() > size) return Error(GeneralStatus::kTooMuchData);
   return Success();
 }
 
-ServiceStatus ReadExactU8(ByteReader& in, std::uint8_t& value) {
+ServiceStatus ReadExactU8(base::ByteReader& in, std::uint8_t& value) {
   const ServiceStatus status = ExpectSize(in, 1);
   if (status.ok()) value = in.U8();
   return status;
 }
 
-ServiceStatus ReadExactU16(ByteReader& in, std::uint16_t& value) {
+ServiceStatus ReadExactU16(base::ByteReader& in, std::uint16_t& value) {
   const ServiceStatus status = ExpectSize(in, 2);
-  if (status.ok()) value = in.U16();
+  if (status.ok()) value = in.U16Le();
   return status;
 }
 
-ServiceStatus ReadExactU32(ByteReader& in, std::uint32_t& value) {
+ServiceStatus ReadExactU32(base::ByteReader& in, std::uint32_t& value) {
   const ServiceStatus status = ExpectSize(in, 4);
-  if (status.ok()) value = in.U32();
+  if (status.ok()) value = in.U32Le();
   return status;
 }
 
@@ -180,19 +180,19 @@ ServiceStatus StoreResult(base::Status status) {
   return Error(GeneralStatus::kStoreOperationFailure);
 }
 
-void PutShortString(std::span<const std::uint8_t> text, ByteWriter& out) {
+void PutShortString(std::span<const std::uint8_t> text, base::ByteWriter& out) {
   out.U8(static_cast<std::uint8_t>(text.size()));
   out.Bytes(text);
 }
 
-void PutPaddedString(std::span<const std::uint8_t> text, ByteWriter& out) {
-  out.U16(static_cast<std::uint16_t>(text.size()));
+void PutPaddedString(std::span<const std::uint8_t> text, base::ByteWriter& out) {
+  out.U16Le(static_cast<std::uint16_t>(text.size()));
   out.Bytes(text);
   if (text.size() % 2 != 0) out.U8(0);
 }
 
-void PutSizedPath(std::span<const std::uint8_t> padded_path, ByteWriter& out) {
-  out.U16(static_cast<std::uint16_t>(padded_path.size() / 2));
+void PutSizedPath(std::span<const std::uint8_t> padded_path, base::ByteWriter& out) {
+  out.U16Le(static_cast<std::uint16_t>(padded_path.size() / 2));
   out.Bytes(padded_path);
 }
 

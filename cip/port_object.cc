@@ -41,17 +41,17 @@ PortObject::PortObject(const TcpIpProvider& tcpip) : tcpip_(tcpip), object_(kPor
 
 std::span<const AttributeSpec> PortObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void PortObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void PortObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case 1:
-      out.U16(kPortType);
+      out.U16Le(kPortType);
       break;
     case 2:
-      out.U16(kPortNumber);
+      out.U16Le(kPortNumber);
       break;
     case 3: {
       std::array<std::uint8_t, 8> path{};
-      ByteWriter link(path);
+      base::ByteWriter link(path);
       EncodeLogicalSegment(SegmentKind::kClass, kClassTcpIpInterface, link);
       EncodeLogicalSegment(SegmentKind::kInstance, 1, link);
       PutSizedPath(link.written(), out);
@@ -71,14 +71,14 @@ void PortObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWrite
   }
 }
 
-void PortObject::GetClassAttribute(std::uint16_t id, ByteWriter& out) {
-  if (id == 8) out.U16(kEntryPort);
+void PortObject::GetClassAttribute(std::uint16_t id, base::ByteWriter& out) {
+  if (id == 8) out.U16Le(kEntryPort);
   if (id == 9) {
     // One entry per instance, starting with instance 0 (the class), which has type and number 0.
-    out.U16(0);
-    out.U16(0);
-    out.U16(kPortType);
-    out.U16(kPortNumber);
+    out.U16Le(0);
+    out.U16Le(0);
+    out.U16Le(kPortType);
+    out.U16Le(kPortNumber);
   }
 }
 

@@ -47,8 +47,8 @@ bool IsMulticast(std::uint32_t address) { return address >> 28 == 0xE; }
 // A CIP STRING with the TCP/IP object's pad byte; 0x13 / 0x15 on a length mismatch, 0x09 when longer
 // than `max`.
 template <std::size_t N>
-ServiceStatus ReadPaddedString(ByteReader& in, FixedString<N>& out) {
-  const std::uint16_t length = in.U16();
+ServiceStatus ReadPaddedString(base::ByteReader& in, FixedString<N>& out) {
+  const std::uint16_t length = in.U16Le();
   const std::span<const std::uint8_t> text = in.Bytes(length);
   if (length % 2 != 0) in.Skip(1);
   if (!in.ok()) return Error(GeneralStatus::kNotEnoughData);
@@ -92,23 +92,23 @@ TcpIpInterfaceObject::TcpIpInterfaceObject(TcpIpProvider& tcpip) : tcpip_(tcpip)
 
 std::span<const AttributeSpec> TcpIpInterfaceObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void TcpIpInterfaceObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void TcpIpInterfaceObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case 1: {
       std::uint32_t status = tcpip_.ConfigurationValid() ? kStatusConfigured : 0;
       if (tcpip_.AddressConflictDetected()) status |= kStatusAcdConflict;
-      out.U32(status);
+      out.U32Le(status);
       break;
     }
     case 2:
-      out.U32(kTcpIpCapabilities);
+      out.U32Le(kTcpIpCapabilities);
       break;
     case 3:
-      out.U32(static_cast<std::uint32_t>(tcpip_.StoredSettings().startup));
+      out.U32Le(static_cast<std::uint32_t>(tcpip_.StoredSettings().startup));
       break;
     case 4: {
       std::array<std::uint8_t, 8> path{};
-      ByteWriter link(path);
+      base::ByteWriter link(path);
       EncodeLogicalSegment(SegmentKind::kClass, kClassEthernetLink, link);
       EncodeLogicalSegment(SegmentKind::kInstance, 1, link);
       PutSizedPath(link.written(), out);
@@ -116,11 +116,11 @@ void TcpIpInterfaceObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id,
     }
     case 5: {
       const InterfaceConfiguration active = tcpip_.ActiveConfiguration();
-      out.U32(active.ip_address);
-      out.U32(active.network_mask);
-      out.U32(active.gateway);
-      out.U32(active.name_server);
-      out.U32(active.name_server_2);
+      out.U32Le(active.ip_address);
+      out.U32Le(active.network_mask);
+      out.U32Le(active.gateway);
+      out.U32Le(active.name_server);
+      out.U32Le(active.name_server_2);
       PutPaddedString(active.domain_name.bytes(), out);
       break;
     }
@@ -137,8 +137,8 @@ void TcpIpInterfaceObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id,
       const MulticastConfiguration multicast = tcpip_.StoredSettings().multicast;
       out.U8(multicast.allocation_control);
       out.U8(0);  // reserved
-      out.U16(multicast.num_mcast);
-      out.U32(multicast.start_address);
+      out.U16Le(multicast.num_mcast);
+      out.U32Le(multicast.start_address);
       break;
     }
     case 10:
@@ -147,7 +147,7 @@ void TcpIpInterfaceObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id,
     case 11: {
       const AcdConflict conflict = tcpip_.LastConflict();
       out.U8(conflict.acd_activity);
-      out.Bytes(conflict.remote_mac);
+      conflict.remote_mac.Write(out);
       out.Bytes(conflict.arp_pdu);
       break;
     }
@@ -156,7 +156,7 @@ void TcpIpInterfaceObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id,
   }
 }
 
-ServiceStatus TcpIpInterfaceObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteReader& value) {
+ServiceStatus TcpIpInterfaceObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteReader& value) {
   TcpIpSettings settings = tcpip_.StoredSettings();
   ServiceStatus status;
   switch (id) {
@@ -201,7 +201,7 @@ ServiceStatus TcpIpInterfaceObject::SetInstanceAttribute(std::uint32_t, std::uin
   return StoreResult(tcpip_.StoreSettings(settings));
 }
 
-ServiceStatus TcpIpInterfaceObject::SetConfigurationControl(ByteReader& value, TcpIpSettings& settings) {
+ServiceStatus TcpIpInterfaceObject::SetConfigurationControl(base::ByteReader& value, TcpIpSettings& settings) {
   std::uint32_t control = 0;
   const ServiceStatus status = ReadExactU32(value, control);
   if (!status.ok()) return status;
@@ -214,15 +214,15 @@ ServiceStatus TcpIpInterfaceObject::SetConfigurationControl(ByteReader& value, T
   return Success();
 }
 
-ServiceStatus TcpIpInterfaceObject::SetInterfaceConfiguration(ByteReader& value, TcpIpSettings& settings) {
+ServiceStatus TcpIpInterfaceObject::SetInterfaceConfiguration(base::ByteReader& value, TcpIpSettings& settings) {
   // The static configuration only makes sense while the card is to use it (c504 = 0).
   if (settings.startup != StartupConfiguration::kStored) return Error(GeneralStatus::kObjectStateConflict);
   InterfaceConfiguration configuration;
-  configuration.ip_address = value.U32();
-  configuration.network_mask = value.U32();
-  configuration.gateway = value.U32();
-  configuration.name_server = value.U32();
-  configuration.name_server_2 = value.U32();
+  configuration.ip_address = value.U32Le();
+  configuration.network_mask = value.U32Le();
+  configuration.gateway = value.U32Le();
+  configuration.name_server = value.U32Le();
+  configuration.name_server_2 = value.U32Le();
   const ServiceStatus status = ReadPaddedString(value, configuration.domain_name);
   if (!status.ok()) return status;
   if (!IsValidInterfaceConfiguration(configuration)) return Error(GeneralStatus::kInvalidAttributeValue);
@@ -230,21 +230,21 @@ ServiceStatus TcpIpInterfaceObject::SetInterfaceConfiguration(ByteReader& value,
   return Success();
 }
 
-ServiceStatus TcpIpInterfaceObject::SetHostName(ByteReader& value, TcpIpSettings& settings) {
+ServiceStatus TcpIpInterfaceObject::SetHostName(base::ByteReader& value, TcpIpSettings& settings) {
   const ServiceStatus status = ReadPaddedString(value, settings.host_name);
   if (!status.ok()) return status;
   if (!IsValidHostName(settings.host_name.bytes())) return Error(GeneralStatus::kInvalidAttributeValue);
   return Success();
 }
 
-ServiceStatus TcpIpInterfaceObject::SetMulticast(ByteReader& value, TcpIpSettings& settings) {
+ServiceStatus TcpIpInterfaceObject::SetMulticast(base::ByteReader& value, TcpIpSettings& settings) {
   const ServiceStatus size = ExpectSize(value, kMulticastSize);
   if (!size.ok()) return size;
   MulticastConfiguration multicast;
   multicast.allocation_control = value.U8();
   const std::uint8_t reserved = value.U8();
-  multicast.num_mcast = value.U16();
-  multicast.start_address = value.U32();
+  multicast.num_mcast = value.U16Le();
+  multicast.start_address = value.U32Le();
   bool valid = reserved == 0;
   if (multicast.allocation_control == 0) {
     valid = valid && multicast.num_mcast == 0 && multicast.start_address == 0;

@@ -101,8 +101,10 @@ class Parser {
     return static_cast<std::uint8_t>(Range(index, fallback, 0, 255));
   }
 
-  void Octets(std::size_t first, std::array<std::uint8_t, 4>& octets) {
+  void Octets(std::size_t first, base::Ipv4Address& address) {
+    base::Ipv4Address::Octets octets = address.octets();
     for (std::size_t i = 0; i < octets.size(); ++i) octets[i] = Octet(first + i, octets[i]);
+    address = base::Ipv4Address(octets);
   }
 
  private:

@@ -67,11 +67,11 @@ void CardWriteBack::SetDriveStatus(std::uint16_t fd01) {
 
 void CardWriteBack::UpdateStatusValues() {
   for (std::size_t i = 0; i < 2; ++i) Set(kRatesAt + i, status_.port_rates[i]);
-  for (std::size_t i = 0; i < 6; ++i) Set(kMacAt + i, status_.mac[i]);
+  for (std::size_t i = 0; i < 6; ++i) Set(kMacAt + i, status_.mac.octets()[i]);
   for (std::size_t i = 0; i < 4; ++i) {
-    Set(kIpAt + i, status_.ip[i]);
-    Set(kNetmaskAt + i, status_.netmask[i]);
-    Set(kGatewayAt + i, status_.gateway[i]);
+    Set(kIpAt + i, status_.ip.octets()[i]);
+    Set(kNetmaskAt + i, status_.netmask.octets()[i]);
+    Set(kGatewayAt + i, status_.gateway.octets()[i]);
   }
   Set(kC536At, c536_);
 }

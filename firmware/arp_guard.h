@@ -32,7 +32,7 @@ namespace firmware {
 class ArpCacheQuery {
  public:
   virtual ~ArpCacheQuery() = default;
-  virtual bool Has(std::uint32_t address) const = 0;  // host byte order
+  virtual bool Has(base::Ipv4Address address) const = 0;
 };
 
 struct ArpGuardCounters {
@@ -54,8 +54,8 @@ class ArpGuard {
     kDrop,    // neither
   };
 
-  // The card's own addresses; address in host byte order (0 while it has none: every ARP frame passes).
-  void SetIdentity(const net::MacAddress& mac, net::Ipv4Address address);
+  // The card's own addresses (address 0.0.0.0 while it has none: every ARP frame passes).
+  void SetIdentity(const base::MacAddress& mac, base::Ipv4Address address);
 
   // A received frame (any type: frames other than ARP for IPv4 over Ethernet pass). Times are lwIP's
   // sys_now() milliseconds, compared modulo 2^32 (the clock wraps after 49 days).
@@ -69,13 +69,13 @@ class ArpGuard {
 
  private:
   struct Awaited {
-    std::uint32_t address = 0;  // 0: free
+    base::Ipv4Address address;  // 0.0.0.0: free
     std::uint32_t sent_ms = 0;
   };
-  bool IsAwaited(std::uint32_t address, std::uint32_t now_ms) const;
+  bool IsAwaited(base::Ipv4Address address, std::uint32_t now_ms) const;
 
-  net::MacAddress mac_{};
-  net::Ipv4Address address_ = 0;
+  base::MacAddress mac_{};
+  base::Ipv4Address address_;
   std::array<Awaited, kMaxAwaited> awaited_{};
   net::ArpFrame reply_{};
   ArpGuardCounters counters_;

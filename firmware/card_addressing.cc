@@ -23,8 +23,9 @@ Ipv4Config UsableManual(const Ipv4Config& given) {
   if (!net::IsUsableUnicast(given.address)) return config;
   config.address = given.address;
   config.netmask = net::IsContiguousMask(given.netmask) ? given.netmask : ClassfulMask(given.address);
-  const bool gateway_on_link = (given.gateway & config.netmask) == (config.address & config.netmask);
-  config.gateway = given.gateway != 0 && gateway_on_link ? given.gateway : 0;
+  const std::uint32_t mask = config.netmask.HostOrder();
+  const bool gateway_on_link = (given.gateway.HostOrder() & mask) == (config.address.HostOrder() & mask);
+  config.gateway = !given.gateway.IsUnspecified() && gateway_on_link ? given.gateway : base::Ipv4Address();
   return config;
 }
 
@@ -33,15 +34,16 @@ Ipv4Config UsableManual(const Ipv4Config& given) {
 AddressingPlan PlanFromConfig(const config::CardConfig& config) {
   AddressingPlan plan;
   plan.mode = config.ip_mode;
-  plan.manual = {FromOctets(config.ip), FromOctets(config.netmask), FromOctets(config.gateway)};
+  plan.manual = {config.ip, config.netmask, config.gateway};
   plan.host_name = config.device_name;
   return plan;
 }
 
-std::uint32_t ClassfulMask(std::uint32_t address) {
-  if ((address >> 31) == 0) return 0xFF000000;     // class A
-  if ((address >> 30) == 0b10) return 0xFFFF0000;  // class B
-  return 0xFFFFFF00;                               // class C
+base::Ipv4Address ClassfulMask(base::Ipv4Address address) {
+  const std::uint8_t first = address.octets()[0];
+  if ((first >> 7) == 0) return base::Ipv4Address(255, 0, 0, 0);       // class A
+  if ((first >> 6) == 0b10) return base::Ipv4Address(255, 255, 0, 0);  // class B
+  return base::Ipv4Address(255, 255, 255, 0);                          // class C
 }
 
 const char* AddressPhaseName(AddressPhase phase) {
@@ -107,7 +109,7 @@ void CardAddressing::Restart(hal::Micros now) {
   switch (plan_.mode) {
     case config::IpMode::kManual: {
       const Ipv4Config manual = UsableManual(plan_.manual);
-      if (manual.address != 0) UseAddress(manual, now);
+      if (!manual.address.IsUnspecified()) UseAddress(manual, now);
       break;
     }
     case config::IpMode::kBootp:
@@ -142,7 +144,7 @@ void CardAddressing::Uninstall() { Install(Ipv4Config{}); }
 
 Ipv4Config CardAddressing::active() const {
   netif& nif = netif_.lwip_netif();
-  return {HostOrder(netif_ip4_addr(&nif)), HostOrder(netif_ip4_netmask(&nif)), HostOrder(netif_ip4_gw(&nif))};
+  return {FromLwip(netif_ip4_addr(&nif)), FromLwip(netif_ip4_netmask(&nif)), FromLwip(netif_ip4_gw(&nif))};
 }
 
 AddressPhase CardAddressing::phase() const {
@@ -195,7 +197,8 @@ void CardAddressing::PollBootp(hal::Micros now) {
     }
     if (!target_set_) {
       const net::BootReply& lease = bootp_.Lease();
-      Ipv4Config config{lease.your_address, lease.subnet_mask.value_or(0), lease.router.value_or(0)};
+      Ipv4Config config{lease.your_address, lease.subnet_mask.value_or(base::Ipv4Address()),
+                        lease.router.value_or(base::Ipv4Address())};
       UseAddress(UsableManual(config), now);
     }
     return;

@@ -50,7 +50,7 @@ struct AddressingPlan {
 AddressingPlan PlanFromConfig(const config::CardConfig& config);
 
 // The mask a manual or BOOTP address gets when none (or a non-contiguous one) is given: class A, B or C.
-std::uint32_t ClassfulMask(std::uint32_t address);
+base::Ipv4Address ClassfulMask(base::Ipv4Address address);
 
 enum class AddressPhase : std::uint8_t {
   kNotConfigured,  // no configuration yet, or manual mode without a usable address
@@ -96,7 +96,7 @@ class CardAddressing final : public Service, public ConfigurableService, public 
   bool configured() const { return configured_; }
   // The address in lwIP (host order; 0.0.0.0 when none).
   Ipv4Config active() const;
-  bool has_address() const { return active().address != 0; }
+  bool has_address() const { return !active().address.IsUnspecified(); }
   bool acquiring() const { return phase() == AddressPhase::kAcquiring; }
   // A conflict found since the last restart (one found for the plan before is not this plan's).
   bool duplicate_detected() const { return acd_ran_ && acd_.DuplicateDetected(); }

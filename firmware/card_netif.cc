@@ -40,12 +40,12 @@ void CardNetif::Start(const Ipv4Config& config, const char* hostname) {
 
 err_t CardNetif::InitCallback(netif* nif) {
   auto* self = static_cast<CardNetif*>(nif->state);
-  const hal::MacAddress mac = self->port_.Mac();
+  const base::MacAddress mac = self->port_.Mac();
   nif->name[0] = 'e';
   nif->name[1] = 'n';
   nif->mtu = 1500;
   nif->hwaddr_len = ETH_HWADDR_LEN;
-  std::memcpy(nif->hwaddr, mac.data(), mac.size());
+  std::memcpy(nif->hwaddr, mac.octets().data(), mac.octets().size());
   nif->flags = NETIF_FLAG_BROADCAST | NETIF_FLAG_ETHARP | NETIF_FLAG_ETHERNET | NETIF_FLAG_IGMP;
   nif->output = etharp_output;
   nif->linkoutput = &CardNetif::LinkOutputCallback;
@@ -57,13 +57,8 @@ err_t CardNetif::InitCallback(netif* nif) {
 err_t CardNetif::MacFilterCallback(netif* nif, const ip4_addr_t* group, enum netif_mac_filter_action action) {
   auto* self = static_cast<CardNetif*>(nif->state);
   // RFC 1112 §6.4: 01-00-5E-00-00-00 plus the low-order 23 bits of the group address.
-  const std::uint32_t address = HostOrder(group);
-  const hal::MacAddress mac{0x01,
-                            0x00,
-                            0x5E,
-                            static_cast<std::uint8_t>((address >> 16) & 0x7F),
-                            static_cast<std::uint8_t>(address >> 8),
-                            static_cast<std::uint8_t>(address)};
+  const base::Ipv4Address::Octets address = FromLwip(group).octets();
+  const base::MacAddress mac{0x01, 0x00, 0x5E, static_cast<std::uint8_t>(address[1] & 0x7F), address[2], address[3]};
   const base::Status status = action == NETIF_ADD_MAC_FILTER ? self->port_.JoinMulticast(mac)
                                                              : self->port_.LeaveMulticast(mac);
   return status.ok() ? ERR_OK : ERR_IF;
@@ -110,12 +105,12 @@ void CardNetif::StatusCallback(netif* nif) { static_cast<CardNetif*>(nif->state)
 
 // The guard follows the address in use (it changes at run time: ACD, BOOTP, DHCP, a new configuration).
 void CardNetif::RefreshArpIdentity() {
-  net::MacAddress mac{};
+  base::MacAddress::Octets mac{};
   std::memcpy(mac.data(), netif_.hwaddr, mac.size());
-  arp_guard_.SetIdentity(mac, HostOrder(netif_ip4_addr(&netif_)));
+  arp_guard_.SetIdentity(base::MacAddress(mac), FromLwip(netif_ip4_addr(&netif_)));
 }
 
-bool CardNetif::Has(std::uint32_t address) const {
+bool CardNetif::Has(base::Ipv4Address address) const {
   const ip4_addr_t wanted = ToLwip(address);
   eth_addr* mac = nullptr;
   const ip4_addr_t* found = nullptr;

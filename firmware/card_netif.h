@@ -26,6 +26,7 @@
 #include <span>
 
 #include "arp_guard.h"
+#include "base/addresses.h"
 #include "hal/frame_port.h"
 #include "lwip/netif.h"
 #include "net/frame_switch.h"
@@ -33,9 +34,9 @@
 namespace firmware {
 
 struct Ipv4Config {
-  std::uint32_t address = 0;  // host byte order, e.g. 0x0A00020F for 10.0.2.15
-  std::uint32_t netmask = 0;
-  std::uint32_t gateway = 0;
+  base::Ipv4Address address;
+  base::Ipv4Address netmask;
+  base::Ipv4Address gateway;
 
   bool operator==(const Ipv4Config&) const = default;
 };
@@ -109,7 +110,7 @@ class CardNetif final : private ArpCacheQuery {
   err_t LinkOutput(pbuf* p);
   void Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery);
   void RefreshArpIdentity();
-  bool Has(std::uint32_t address) const override;  // ArpCacheQuery: a stable lwIP ARP entry
+  bool Has(base::Ipv4Address address) const override;  // ArpCacheQuery: a stable lwIP ARP entry
 
   hal::FramePort& port_;
   net::FrameSwitch switch_;

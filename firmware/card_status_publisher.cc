@@ -1,6 +1,7 @@
 #include "card_status_publisher.h"
 
 #include "drive_link/drive_registers.h"
+#include "ipv4_lwip.h"
 #include "lwip/netif.h"
 
 namespace firmware {
@@ -19,11 +20,6 @@ constexpr KnownDrive kKnownDrives[] = {
 };
 
 char HexDigit(unsigned value) { return "0123456789ABCDEF"[value & 0xF]; }
-
-std::array<std::uint8_t, 4> Octets(const ip4_addr_t* address) {
-  if (address == nullptr) return {};
-  return {ip4_addr1(address), ip4_addr2(address), ip4_addr3(address), ip4_addr4(address)};
-}
 
 }  // namespace
 
@@ -92,9 +88,9 @@ config::CardStatus CardStatusPublisher::CurrentStatus() {
   status.ethernet_error = carrier ? 0 : 3;
   status.mac = port.Mac();
   netif& nif = netif_.lwip_netif();
-  status.ip = Octets(netif_ip4_addr(&nif));
-  status.netmask = Octets(netif_ip4_netmask(&nif));
-  status.gateway = Octets(netif_ip4_gw(&nif));
+  status.ip = FromLwip(netif_ip4_addr(&nif));
+  status.netmask = FromLwip(netif_ip4_netmask(&nif));
+  status.gateway = FromLwip(netif_ip4_gw(&nif));
   return status;
 }
 

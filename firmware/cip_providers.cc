@@ -2,7 +2,8 @@
 
 #include <algorithm>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "drive_link/drive_registers.h"
 #include "ipv4_lwip.h"
 #include "lwip/netif.h"
@@ -37,7 +38,7 @@ bool ApplicationConfigured(const config::CardConfig& config) {
 
 // ---- CardIdentity -----------------------------------------------------------------------------------
 
-cip::MacAddress CardIdentity::Mac() const { return port_.Mac(); }
+base::MacAddress CardIdentity::Mac() const { return port_.Mac(); }
 
 void CardIdentity::OnDriveIdentity(std::uint16_t fb05, std::uint16_t fe08) {
   static_cast<void>(fe08);  // the Identity revision is the card's (§4.1: 1.8), not the drive's CPU version
@@ -78,9 +79,9 @@ cip::AcdConflict CardTcpIp::LastConflict() const {
 
 base::Status CardTcpIp::Configure(const config::CardConfig& config) {
   settings_.startup = static_cast<cip::StartupConfiguration>(config.ip_mode);
-  settings_.static_configuration.ip_address = FromOctets(config.ip);
-  settings_.static_configuration.network_mask = FromOctets(config.netmask);
-  settings_.static_configuration.gateway = FromOctets(config.gateway);
+  settings_.static_configuration.ip_address = config.ip.HostOrder();
+  settings_.static_configuration.network_mask = config.netmask.HostOrder();
+  settings_.static_configuration.gateway = config.gateway.HostOrder();
   const std::string_view name(config.device_name.data());
   // c081-c096 hold at most 16 characters, exactly the attribute's capacity.
   static_cast<void>(settings_.host_name.Assign(name.substr(0, cip::kMaxHostName)));
@@ -90,9 +91,9 @@ base::Status CardTcpIp::Configure(const config::CardConfig& config) {
 cip::InterfaceConfiguration CardTcpIp::ActiveConfiguration() const {
   netif& nif = netif_.lwip_netif();
   cip::InterfaceConfiguration active;
-  active.ip_address = HostOrder(netif_ip4_addr(&nif));
-  active.network_mask = HostOrder(netif_ip4_netmask(&nif));
-  active.gateway = HostOrder(netif_ip4_gw(&nif));
+  active.ip_address = FromLwip(netif_ip4_addr(&nif)).HostOrder();
+  active.network_mask = FromLwip(netif_ip4_netmask(&nif)).HostOrder();
+  active.gateway = FromLwip(netif_ip4_gw(&nif)).HostOrder();
   // The card has no DNS client: the name servers and domain in use are the stored ones.
   active.name_server = settings_.static_configuration.name_server;
   active.name_server_2 = settings_.static_configuration.name_server_2;
@@ -111,11 +112,12 @@ std::uint32_t CardTcpIp::MulticastGroup(std::size_t index) const {
   constexpr std::uint32_t kGroupsPerDevice = 32;
   if (index >= kGroupsPerDevice) return 0;
   const netif& nif = netif_.lwip_netif();
-  const std::uint32_t host_id = HostOrder(netif_ip4_addr(&nif)) & ~HostOrder(netif_ip4_netmask(&nif));
+  const std::uint32_t host_id =
+      FromLwip(netif_ip4_addr(&nif)).HostOrder() & ~FromLwip(netif_ip4_netmask(&nif)).HostOrder();
   return kBase + ((host_id - 1U) & 0x3FFU) * kGroupsPerDevice + static_cast<std::uint32_t>(index);
 }
 
-bool CardTcpIp::ConfigurationValid() const { return HostOrder(netif_ip4_addr(&netif_.lwip_netif())) != 0; }
+bool CardTcpIp::ConfigurationValid() const { return !FromLwip(netif_ip4_addr(&netif_.lwip_netif())).IsUnspecified(); }
 
 base::Status CardTcpIp::StoreSettings(const cip::TcpIpSettings& settings) {
   for (const std::uint8_t c : settings.host_name.bytes()) {
@@ -159,16 +161,16 @@ void CardTcpIp::LoadExtras() {
   std::array<std::uint8_t, kExtrasMaxBytes> record{};
   const base::Result<std::size_t> read = store_.Read(kNvTcpIpExtras, record);
   if (!read.ok()) return;  // never written, or damaged: the defaults
-  cip::ByteReader in(std::span<const std::uint8_t>(record.data(), *read));
+  base::ByteReader in(std::span<const std::uint8_t>(record.data(), *read));
   if (in.U8() != kExtrasVersion) return;
   cip::TcpIpSettings loaded = settings_;
   loaded.ttl = in.U8();
   loaded.select_acd = in.U8() != 0;
   loaded.multicast.allocation_control = in.U8();
-  loaded.multicast.num_mcast = in.U16();
-  loaded.multicast.start_address = in.U32();
-  loaded.static_configuration.name_server = in.U32();
-  loaded.static_configuration.name_server_2 = in.U32();
+  loaded.multicast.num_mcast = in.U16Le();
+  loaded.multicast.start_address = in.U32Le();
+  loaded.static_configuration.name_server = in.U32Le();
+  loaded.static_configuration.name_server_2 = in.U32Le();
   const std::uint8_t domain_length = in.U8();
   const std::span<const std::uint8_t> domain = in.Bytes(domain_length);
   if (!in.ok() || !loaded.static_configuration.domain_name.Assign(domain)) return;
@@ -177,15 +179,15 @@ void CardTcpIp::LoadExtras() {
 
 base::Status CardTcpIp::SaveExtras(const cip::TcpIpSettings& settings) {
   std::array<std::uint8_t, kExtrasMaxBytes> record{};
-  cip::ByteWriter out(record);
+  base::ByteWriter out(record);
   out.U8(kExtrasVersion);
   out.U8(settings.ttl);
   out.U8(settings.select_acd ? 1 : 0);
   out.U8(settings.multicast.allocation_control);
-  out.U16(settings.multicast.num_mcast);
-  out.U32(settings.multicast.start_address);
-  out.U32(settings.static_configuration.name_server);
-  out.U32(settings.static_configuration.name_server_2);
+  out.U16Le(settings.multicast.num_mcast);
+  out.U32Le(settings.multicast.start_address);
+  out.U32Le(settings.static_configuration.name_server);
+  out.U32Le(settings.static_configuration.name_server_2);
   const std::span<const std::uint8_t> domain = settings.static_configuration.domain_name.bytes();
   out.U8(static_cast<std::uint8_t>(domain.size()));
   out.Bytes(domain);

@@ -40,7 +40,7 @@ class CardIdentity final : public cip::DeviceInfoProvider, public DriveIdentityS
   // The CIP connections, for the I/O bits of the status word (none: "no I/O connections").
   void set_connections(const cip::ConnectionTable* connections) { connections_ = connections; }
 
-  cip::MacAddress Mac() const override;
+  base::MacAddress Mac() const override;
   cip::DriveModel Model() const override { return model_; }
   cip::DeviceStatus Status() const override;
 

@@ -18,7 +18,7 @@ static_assert(cip::kMaxReplyMessage == IPE_ENIP_REPLY_BYTES, "lwipopts.h sizes t
 static_assert(cip::kMaxReplyMessage <= TCP_SND_BUF, "the largest reply must fit an empty send buffer");
 
 cip::Ipv4Endpoint Endpoint(const ip_addr_t* address, u16_t port) {
-  return {lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address))), port};
+  return {base::Ipv4Address(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address)))), port};
 }
 
 }  // namespace
@@ -214,7 +214,7 @@ void EipService::SendDatagram(const cip::Ipv4Endpoint& to, std::span<const std::
   }
   pbuf_take(p, bytes.data(), static_cast<u16_t>(bytes.size()));
   ip_addr_t address;
-  ip_addr_set_ip4_u32_val(address, lwip_htonl(to.address));
+  ip_addr_set_ip4_u32_val(address, lwip_htonl(to.address.HostOrder()));
   if (udp_sendto(udp_, p, &address, to.port) == ERR_OK) {
     ++counters_.udp_sent;
   } else {

@@ -58,7 +58,7 @@ void IoService::Receive(pbuf* p, const ip_addr_t* address, u16_t port) {
   }
   const std::size_t length = pbuf_copy_partial(p, datagram_.data(), p->tot_len, 0);
   pbuf_free(p);
-  const cip::Ipv4Endpoint from{lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address))), port};
+  const cip::Ipv4Endpoint from{base::Ipv4Address(lwip_ntohl(ip4_addr_get_u32(ip_2_ip4(address)))), port};
   manager_.OnIoDatagram(std::span<const std::uint8_t>(datagram_.data(), length), from, clock_.NowMicros());
 }
 
@@ -71,7 +71,7 @@ void IoService::Send(const cip::IoDatagram& datagram) {
   }
   pbuf_take(p, datagram.bytes.data(), static_cast<u16_t>(datagram.bytes.size()));
   ip_addr_t address;
-  ip_addr_set_ip4_u32_val(address, lwip_htonl(datagram.to.address));
+  ip_addr_set_ip4_u32_val(address, lwip_htonl(datagram.to.address.HostOrder()));
   if (datagram.multicast) udp_set_multicast_ttl(pcb_, ttl_.MulticastTtl());
   if (udp_sendto(pcb_, p, &address, datagram.to.port) == ERR_OK) {
     ++counters_.sent;

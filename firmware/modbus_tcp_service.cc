@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "ipv4_lwip.h"
 #include "lwip/ip.h"
 #include "lwipopts.h"
 
@@ -20,11 +21,8 @@ static_assert(ModbusTcpService::kMaxUnacknowledgedBytes == IPE_MODBUS_UNACKED_BY
               "lwipopts.h sizes the heap for this many unacknowledged bytes");
 static_assert(modbus::Server::kMaxClients == IPE_MAX_MODBUS_CLIENTS, "lwipopts.h sizes pools for these clients");
 
-modbus::Ipv4Address PeerAddress(const tcp_pcb* pcb) {
-  const u32_t network_order = ip4_addr_get_u32(ip_2_ip4(&pcb->remote_ip));
-  modbus::Ipv4Address address{};
-  std::memcpy(address.data(), &network_order, address.size());
-  return address;
+base::Ipv4Address PeerAddress(const tcp_pcb* pcb) {
+  return FromLwip(ip_2_ip4(&pcb->remote_ip));
 }
 
 }  // namespace

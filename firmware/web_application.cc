@@ -470,30 +470,31 @@ void WebApplication::Network(const Call& call) {
     const config::CardStatus card = devices_.status.card_status();
     std::array<char, 17> mac{};
     static constexpr char kHex[] = "0123456789abcdef";
-    for (std::size_t i = 0; i < card.mac.size(); ++i) {
-      mac[i * 3] = kHex[card.mac[i] >> 4];
-      mac[i * 3 + 1] = kHex[card.mac[i] & 0xF];
-      if (i + 1 < card.mac.size()) mac[i * 3 + 2] = ':';
+    const base::MacAddress::Octets& octets = card.mac.octets();
+    for (std::size_t i = 0; i < octets.size(); ++i) {
+      mac[i * 3] = kHex[octets[i] >> 4];
+      mac[i * 3 + 1] = kHex[octets[i] & 0xF];
+      if (i + 1 < octets.size()) mac[i * 3 + 2] = ':';
     }
     json.BeginObject().Key("mac").String(std::string_view(mac.data(), mac.size()));
     json.Key("config").BeginObject();
     json.Key("c500").Number(static_cast<int>(config.protocol)).Key("c501").Number(config.rate_setting);
     json.Key("c504").Number(static_cast<int>(config.ip_mode));
     json.Key("ip");
-    ByteArray(json, config.ip);
+    ByteArray(json, config.ip.octets());
     json.Key("netmask");
-    ByteArray(json, config.netmask);
+    ByteArray(json, config.netmask.octets());
     json.Key("gateway");
-    ByteArray(json, config.gateway);
+    ByteArray(json, config.gateway.octets());
     json.Key("c523").Number(config.timeout_tenths).Key("c554").Number(config.web_server ? 1 : 0);
     const std::string_view name(config.device_name.data());
     json.Key("device_name").String(name).EndObject();
     json.Key("actual").BeginObject().Key("ip");
-    ByteArray(json, card.ip);
+    ByteArray(json, card.ip.octets());
     json.Key("netmask");
-    ByteArray(json, card.netmask);
+    ByteArray(json, card.netmask.octets());
     json.Key("gateway");
-    ByteArray(json, card.gateway);
+    ByteArray(json, card.gateway.octets());
     json.Key("c502").Number(card.port_rates[0]).Key("c503").Number(card.port_rates[1]);
     json.Key("c536").Number(card.ethernet_error).EndObject().EndObject();
   });
@@ -507,7 +508,7 @@ void WebApplication::ModbusScanner(const Call& call) {
     json.Key("c021_c026");
     WordArray(json, config.monitor_menus);
     json.EndObject().Key("master").BeginObject().Key("c600_c603");
-    ByteArray(json, config.modbus_master);
+    ByteArray(json, config.modbus_master.octets());
     json.Key("c604").Number(config.io_scanning ? 1 : 0).EndObject();
     json.Key("c523").Number(config.timeout_tenths);
     json.Key("live").BeginObject().Key("command");

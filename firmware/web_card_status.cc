@@ -59,15 +59,14 @@ void CardWebStatus::WriteConnections(web::JsonWriter& json) const {
   json.BeginArray();
   for (std::size_t i = 0; i < count; ++i) {
     const cip::ConnectionInfo& c = list[i];
-    const std::uint32_t a = c.originator_address;
     std::array<char, 16> text{};
     std::size_t n = 0;
-    for (int shift = 24; shift >= 0; shift -= 8) {
-      const unsigned octet = (a >> shift) & 0xFF;
+    for (std::size_t k = 0; k < base::Ipv4Address::kSize; ++k) {
+      const unsigned octet = c.originator_address.octets()[k];
       if (octet >= 100) text[n++] = static_cast<char>('0' + octet / 100);
       if (octet >= 10) text[n++] = static_cast<char>('0' + octet / 10 % 10);
       text[n++] = static_cast<char>('0' + octet % 10);
-      if (shift != 0) text[n++] = '.';
+      if (k + 1 < base::Ipv4Address::kSize) text[n++] = '.';
     }
     json.BeginObject().Key("originator").String(std::string_view(text.data(), n));
     json.Key("class").Number(c.transport_class).Key("kind").String(ConnectionKind(c));

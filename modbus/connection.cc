@@ -41,7 +41,7 @@ bool ServesFunction(UnitKind unit, std::uint8_t function) {
 
 }  // namespace
 
-void Connection::Open(const Ipv4Address& peer, hal::Micros now) {
+void Connection::Open(const base::Ipv4Address& peer, hal::Micros now) {
   open_ = true;
   must_close_ = false;
   peer_ = peer;
@@ -158,7 +158,7 @@ void Connection::Begin(const MbapHeader& header, std::span<const std::uint8_t> p
   const Request& request = decoded.request;
 
   std::array<std::uint8_t, kMaxPduBytes> pdu_buffer{};
-  ByteWriter writer(pdu_buffer);
+  base::ByteWriter writer(pdu_buffer);
   if (request.function == fc::kEncapsulatedInterface) {
     const IdentitySubject subject = unit == UnitKind::kDrive ? IdentitySubject::kDrive : IdentitySubject::kOptionBoard;
     WriteDeviceIdentification(writer, subject, shared_->board, request.device_id_code, request.object_id);
@@ -212,7 +212,7 @@ void Connection::FinishDrive() {
     return AnswerException(request_.function, exception);
   }
   std::array<std::uint8_t, kMaxPduBytes> pdu_buffer{};
-  ByteWriter writer(pdu_buffer);
+  base::ByteWriter writer(pdu_buffer);
   switch (request_.function) {
     case fc::kReadHoldingRegisters:
       WriteRegisterValues(writer, request_.function, transfer_.values());
@@ -231,18 +231,18 @@ void Connection::FinishDrive() {
 void Connection::AnswerException(std::uint8_t function, ExceptionCode code) {
   ++shared_->counters.exceptions;
   std::array<std::uint8_t, 2> pdu_buffer{};
-  ByteWriter writer(pdu_buffer);
+  base::ByteWriter writer(pdu_buffer);
   WriteException(writer, function, code);
   Answer(writer.written());
 }
 
 // Appends the answer to the request at the front of the input and releases that request.
 void Connection::Answer(std::span<const std::uint8_t> pdu) {
-  ByteWriter writer(std::span<std::uint8_t>(answers_).subspan(answer_length_));
+  base::ByteWriter writer(std::span<std::uint8_t>(answers_).subspan(answer_length_));
   WriteMbapHeader(writer, header_, pdu.size());
   writer.Bytes(pdu);
   // Serve() only starts a request with room for a largest answer, so this always fits.
-  if (writer.ok()) answer_length_ += writer.length();
+  if (writer.ok()) answer_length_ += writer.size();
   ReleaseFront();
 }
 

@@ -42,7 +42,7 @@ ObjectList ObjectsFor(IdentitySubject subject, const OptionBoardData& data, cons
 
 }  // namespace
 
-void WriteDeviceIdentification(ByteWriter& writer, IdentitySubject subject, const OptionBoardData& data,
+void WriteDeviceIdentification(base::ByteWriter& writer, IdentitySubject subject, const OptionBoardData& data,
                                std::uint8_t device_id_code, std::uint8_t object_id) {
   const IdentityText firmware = FirmwareVersionText(data.firmware_version);
   const ObjectList list = ObjectsFor(subject, data, firmware, device_id_code);

@@ -4,7 +4,7 @@ namespace modbus {
 namespace {
 
 // c600-c603 = 0.0.0.0: no master configured, any client may scan.
-constexpr Ipv4Address kAnyMaster{0, 0, 0, 0};
+constexpr base::Ipv4Address kAnyMaster{0, 0, 0, 0};
 
 bool InRange(std::uint16_t address, std::uint16_t count) {
   return static_cast<std::uint32_t>(address) + count <= kIoScanWordCount;
@@ -27,19 +27,19 @@ void WriteOutputWords(drive_link::ScannerImage& scanner, std::uint16_t address,
 }
 
 void ReadInputWords(const drive_link::ScannerImage& scanner, std::uint16_t address, std::uint16_t count,
-                    ByteWriter& writer, std::uint8_t function) {
+                    base::ByteWriter& writer, std::uint8_t function) {
   const drive_link::ScannerWords monitors = scanner.MonitorWords();
   writer.U8(function);
   writer.U8(static_cast<std::uint8_t>(2 * count));
   for (std::uint16_t i = 0; i < count; ++i) {
     const std::uint32_t word = static_cast<std::uint32_t>(address) + i;
-    writer.U16(IsScannerWord(word) ? monitors[word - 1] : std::uint16_t{0});
+    writer.U16Be(IsScannerWord(word) ? monitors[word - 1] : std::uint16_t{0});
   }
 }
 
 }  // namespace
 
-ExceptionCode IoScanningAccess(const config::CardConfig& config, const Ipv4Address& peer) {
+ExceptionCode IoScanningAccess(const config::CardConfig& config, const base::Ipv4Address& peer) {
   if (!config.io_scanning) return ExceptionCode::kIllegalFunction;
   if (config.modbus_master != kAnyMaster && config.modbus_master != peer) {
     return ExceptionCode::kIllegalFunction;
@@ -47,13 +47,13 @@ ExceptionCode IoScanningAccess(const config::CardConfig& config, const Ipv4Addre
   return ExceptionCode::kNone;
 }
 
-bool ControlLockedFor(const config::CardConfig& config, const Ipv4Address& peer) {
+bool ControlLockedFor(const config::CardConfig& config, const base::Ipv4Address& peer) {
   return config.io_scanning && config.modbus_master != kAnyMaster && config.modbus_master != peer;
 }
 
 bool IsIoScanningWrite(const Request& request) { return IsWriteFunction(request.function); }
 
-void ServeIoScanner(const Request& request, drive_link::ScannerImage& scanner, ByteWriter& writer) {
+void ServeIoScanner(const Request& request, drive_link::ScannerImage& scanner, base::ByteWriter& writer) {
   switch (request.function) {
     case fc::kReadHoldingRegisters:
       if (!InRange(request.read_address, request.read_count)) break;

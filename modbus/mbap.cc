@@ -7,11 +7,11 @@ FrameResult FindFrame(std::span<const std::uint8_t> stream) {
   // Protocol id and length are bytes 2-5: enough to judge the header.
   constexpr std::size_t kJudgeBytes = 6;
   if (stream.size() < kJudgeBytes) return result;
-  ByteReader reader(stream);
+  base::ByteReader reader(stream);
   MbapHeader header;
-  header.transaction_id = reader.U16();
-  header.protocol_id = reader.U16();
-  header.length = reader.U16();
+  header.transaction_id = reader.U16Be();
+  header.protocol_id = reader.U16Be();
+  header.length = reader.U16Be();
   if (header.protocol_id != 0) {
     result.check = FrameCheck::kBadHeader;
     result.fault = HeaderFault::kProtocolId;
@@ -36,10 +36,10 @@ FrameResult FindFrame(std::span<const std::uint8_t> stream) {
   return result;
 }
 
-void WriteMbapHeader(ByteWriter& writer, const MbapHeader& request, std::size_t answer_pdu_length) {
-  writer.U16(request.transaction_id);
-  writer.U16(0);
-  writer.U16(static_cast<std::uint16_t>(answer_pdu_length + 1));
+void WriteMbapHeader(base::ByteWriter& writer, const MbapHeader& request, std::size_t answer_pdu_length) {
+  writer.U16Be(request.transaction_id);
+  writer.U16Be(0);
+  writer.U16Be(static_cast<std::uint16_t>(answer_pdu_length + 1));
   writer.U8(request.unit_id);
 }
 

@@ -34,13 +34,13 @@ Map BuildMap(const OptionBoardView& view) {
   map[0] = view.data.firmware_version;
   map[1] = static_cast<std::uint16_t>(config.protocol);      // c500
   map[2] = static_cast<std::uint16_t>(config.ip_mode);       // c504
-  Put(map, 3, config.ip);                                    // c505-c508
-  Put(map, 7, config.netmask);                               // c509-c512
-  Put(map, 11, config.gateway);                              // c513-c516
-  Put(map, 15, status.mac);                                  // c517-c522
-  Put(map, 21, status.ip);                                   // c524-c527
-  Put(map, 25, status.netmask);                              // c528-c531
-  Put(map, 29, status.gateway);                              // c532-c535
+  Put(map, 3, config.ip.octets());                           // c505-c508
+  Put(map, 7, config.netmask.octets());                      // c509-c512
+  Put(map, 11, config.gateway.octets());                     // c513-c516
+  Put(map, 15, status.mac.octets());                         // c517-c522
+  Put(map, 21, status.ip.octets());                          // c524-c527
+  Put(map, 25, status.netmask.octets());                     // c528-c531
+  Put(map, 29, status.gateway.octets());                     // c532-c535
   map[33] = status.ethernet_error;                           // c536
   Put(map, 34, status.port_rates);                           // c502, c503
   map[36] = config.timeout_tenths;                           // c523
@@ -49,7 +49,7 @@ Map BuildMap(const OptionBoardView& view) {
   map[39] = config.loss_preset_speed;                        // c102
   map[40] = config.loss_condition;                           // c103
   map[41] = config.io_scanning ? 1 : 0;                      // c604
-  Put(map, 42, config.modbus_master);                        // c600-c603
+  Put(map, 42, config.modbus_master.octets());               // c600-c603
   map[46] = config.web_server ? 1 : 0;                       // c554
   map[47] = LinkStateCode(view.data.drive_link);
   map[48] = view.clients;

@@ -5,52 +5,52 @@ namespace {
 
 // Each decoder gets the PDU after its function byte and checks the exact length of its layout: a PDU
 // longer or shorter than its function's layout is "illegal data value" (decided, docs/modbus.md).
-ExceptionCode DecodeReadHolding(ByteReader& reader, Request& request) {
-  request.read_address = reader.U16();
-  request.read_count = reader.U16();
+ExceptionCode DecodeReadHolding(base::ByteReader& reader, Request& request) {
+  request.read_address = reader.U16Be();
+  request.read_count = reader.U16Be();
   if (!reader.ok() || reader.remaining() != 0) return ExceptionCode::kIllegalDataValue;
   if (request.read_count < 1 || request.read_count > kMaxReadRegisters) return ExceptionCode::kIllegalDataValue;
   return ExceptionCode::kNone;
 }
 
-ExceptionCode DecodeWriteSingle(ByteReader& reader, Request& request) {
-  request.write_address = reader.U16();
-  request.write_values[0] = reader.U16();
+ExceptionCode DecodeWriteSingle(base::ByteReader& reader, Request& request) {
+  request.write_address = reader.U16Be();
+  request.write_values[0] = reader.U16Be();
   request.write_count = 1;
   if (!reader.ok() || reader.remaining() != 0) return ExceptionCode::kIllegalDataValue;
   return ExceptionCode::kNone;
 }
 
 // Count, byte count and values of a write (FC 16 and the write half of FC 23).
-ExceptionCode DecodeWriteValues(ByteReader& reader, Request& request, std::uint16_t max_count) {
-  request.write_count = reader.U16();
+ExceptionCode DecodeWriteValues(base::ByteReader& reader, Request& request, std::uint16_t max_count) {
+  request.write_count = reader.U16Be();
   const std::uint8_t byte_count = reader.U8();
   if (!reader.ok()) return ExceptionCode::kIllegalDataValue;
   if (request.write_count < 1 || request.write_count > max_count) return ExceptionCode::kIllegalDataValue;
   if (byte_count != 2 * request.write_count || reader.remaining() != byte_count) {
     return ExceptionCode::kIllegalDataValue;
   }
-  for (std::uint16_t i = 0; i < request.write_count; ++i) request.write_values[i] = reader.U16();
+  for (std::uint16_t i = 0; i < request.write_count; ++i) request.write_values[i] = reader.U16Be();
   return reader.ok() ? ExceptionCode::kNone : ExceptionCode::kIllegalDataValue;
 }
 
-ExceptionCode DecodeWriteMultiple(ByteReader& reader, Request& request) {
-  request.write_address = reader.U16();
+ExceptionCode DecodeWriteMultiple(base::ByteReader& reader, Request& request) {
+  request.write_address = reader.U16Be();
   return DecodeWriteValues(reader, request, kMaxWriteRegisters);
 }
 
 // The Modbus layout: read address, read count, write address, write count, byte count, values (the
 // seed's §8.7 tables repeat FC 16's and are not followed).
-ExceptionCode DecodeReadWrite(ByteReader& reader, Request& request) {
-  request.read_address = reader.U16();
-  request.read_count = reader.U16();
-  request.write_address = reader.U16();
+ExceptionCode DecodeReadWrite(base::ByteReader& reader, Request& request) {
+  request.read_address = reader.U16Be();
+  request.read_count = reader.U16Be();
+  request.write_address = reader.U16Be();
   if (!reader.ok()) return ExceptionCode::kIllegalDataValue;
   if (request.read_count < 1 || request.read_count > kMaxIoScanReadWords) return ExceptionCode::kIllegalDataValue;
   return DecodeWriteValues(reader, request, kMaxIoScanWriteWords);
 }
 
-ExceptionCode DecodeEncapsulated(ByteReader& reader, Request& request) {
+ExceptionCode DecodeEncapsulated(base::ByteReader& reader, Request& request) {
   const std::uint8_t mei_type = reader.U8();
   if (!reader.ok()) return ExceptionCode::kIllegalDataValue;
   // Another MEI type (0x0D CANopen) is a function the card does not serve.
@@ -75,7 +75,7 @@ UnitKind ClassifyUnit(std::uint8_t unit_id) {
 
 DecodedRequest DecodeRequest(std::span<const std::uint8_t> pdu) {
   DecodedRequest decoded;
-  ByteReader reader(pdu);
+  base::ByteReader reader(pdu);
   decoded.request.function = reader.U8();
   if (!reader.ok()) {
     decoded.exception = ExceptionCode::kIllegalFunction;
@@ -110,27 +110,27 @@ bool IsWriteFunction(std::uint8_t function) {
          function == fc::kReadWriteMultipleRegisters;
 }
 
-void WriteException(ByteWriter& writer, std::uint8_t function, ExceptionCode code) {
+void WriteException(base::ByteWriter& writer, std::uint8_t function, ExceptionCode code) {
   writer.U8(static_cast<std::uint8_t>(function | fc::kExceptionBit));
   writer.U8(static_cast<std::uint8_t>(code));
 }
 
-void WriteRegisterValues(ByteWriter& writer, std::uint8_t function, std::span<const std::uint16_t> values) {
+void WriteRegisterValues(base::ByteWriter& writer, std::uint8_t function, std::span<const std::uint16_t> values) {
   writer.U8(function);
   writer.U8(static_cast<std::uint8_t>(2 * values.size()));
-  for (std::uint16_t value : values) writer.U16(value);
+  for (std::uint16_t value : values) writer.U16Be(value);
 }
 
-void WriteSingleRegisterAnswer(ByteWriter& writer, std::uint16_t address, std::uint16_t value) {
+void WriteSingleRegisterAnswer(base::ByteWriter& writer, std::uint16_t address, std::uint16_t value) {
   writer.U8(fc::kWriteSingleRegister);
-  writer.U16(address);
-  writer.U16(value);
+  writer.U16Be(address);
+  writer.U16Be(value);
 }
 
-void WriteMultipleRegistersAnswer(ByteWriter& writer, std::uint16_t address, std::uint16_t count) {
+void WriteMultipleRegistersAnswer(base::ByteWriter& writer, std::uint16_t address, std::uint16_t count) {
   writer.U8(fc::kWriteMultipleRegisters);
-  writer.U16(address);
-  writer.U16(count);
+  writer.U16Be(address);
+  writer.U16Be(count);
 }
 
 }  // namespace modbus

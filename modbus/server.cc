@@ -17,7 +17,7 @@ void Server::Configure(const config::CardConfig& config) {
   shared_.loss.Configure(config.timeout_tenths, config.io_scanning);
 }
 
-base::Result<ConnectionId> Server::Open(const Ipv4Address& peer, hal::Micros now) {
+base::Result<ConnectionId> Server::Open(const base::Ipv4Address& peer, hal::Micros now) {
   for (std::size_t i = 0; i < connections_.size(); ++i) {
     if (connections_[i].is_open()) continue;
     connections_[i].Open(peer, now);

@@ -8,19 +8,22 @@ namespace net {
 
 void EncodeLastConflictDetected(const AcdConflictRecord& record,
                                 std::span<std::uint8_t, kLastConflictDetectedSize> out) {
-  out[0] = static_cast<std::uint8_t>(record.activity);
-  StoreMac(record.remote_mac, out.subspan<1, 6>());
-  std::copy(record.arp_pdu.begin(), record.arp_pdu.end(), out.subspan<7, kArpPduSize>().begin());
+  // 35 bytes into 35: cannot fail.
+  base::ByteWriter writer(out);
+  writer.U8(static_cast<std::uint8_t>(record.activity));
+  record.remote_mac.Write(writer);
+  writer.Bytes(record.arp_pdu);
 }
 
 base::Result<AcdConflictRecord> DecodeLastConflictDetected(std::span<const std::uint8_t> bytes) {
   if (bytes.size() != kLastConflictDetectedSize) return base::OutOfRange();
-  const std::span<const std::uint8_t, kLastConflictDetectedSize> fixed = bytes.first<kLastConflictDetectedSize>();
-  if (fixed[0] > static_cast<std::uint8_t>(AcdActivity::kSemiActiveProbe)) return base::InvalidArgument();
+  base::ByteReader reader(bytes);
+  const std::uint8_t activity = reader.U8();
+  if (activity > static_cast<std::uint8_t>(AcdActivity::kSemiActiveProbe)) return base::InvalidArgument();
   AcdConflictRecord record;
-  record.activity = static_cast<AcdActivity>(fixed[0]);
-  record.remote_mac = LoadMac(fixed.subspan<1, 6>());
-  const auto pdu = fixed.subspan<7, kArpPduSize>();
+  record.activity = static_cast<AcdActivity>(activity);
+  record.remote_mac = base::MacAddress::Read(reader);
+  const std::span<const std::uint8_t> pdu = reader.Bytes(kArpPduSize);
   std::copy(pdu.begin(), pdu.end(), record.arp_pdu.begin());
   return record;
 }
@@ -33,16 +36,16 @@ base::Result<bool> DecodeSelectAcd(std::span<const std::uint8_t> bytes) {
 
 // ---- State machine -------------------------------------------------------------------------------
 
-Acd::Acd(const MacAddress& own_mac, const AcdTimings& timings, hal::RandomSource& random, ArpSink& sink)
+Acd::Acd(const base::MacAddress& own_mac, const AcdTimings& timings, hal::RandomSource& random, ArpSink& sink)
     : own_mac_(own_mac), timings_(timings), random_(random), sink_(sink) {}
 
-void Acd::Start(Ipv4Address address, hal::Micros now) {
+void Acd::Start(base::Ipv4Address address, hal::Micros now) {
   address_ = address;
   duplicate_ = false;
   EnterProbing(now);
 }
 
-void Acd::Claim(Ipv4Address address, hal::Micros now) {
+void Acd::Claim(base::Ipv4Address address, hal::Micros now) {
   address_ = address;
   duplicate_ = false;
   state_ = AcdState::kAnnouncing;
@@ -81,7 +84,7 @@ AcdEvent Acd::OnFrame(std::span<const std::uint8_t> frame, hal::Micros now) {
   switch (state_) {
     case AcdState::kProbing: {
       const bool claims = packet.sender_ip == address_;
-      const bool probes_too = packet.operation == ArpOperation::kRequest && packet.sender_ip == 0 &&
+      const bool probes_too = packet.operation == ArpOperation::kRequest && packet.sender_ip.IsUnspecified() &&
                               packet.target_ip == address_;
       if (!claims && !probes_too) return AcdEvent::kNone;
       Record(AcdActivity::kProbeIpv4Address, packet, frame);

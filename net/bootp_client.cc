@@ -12,7 +12,6 @@ constexpr std::uint8_t kHlenEthernet = 6;
 
 // Field offsets of RFC 951 §3.
 constexpr std::size_t kXid = 4;
-constexpr std::size_t kSecs = 8;
 constexpr std::size_t kFlags = 10;
 constexpr std::size_t kYiaddr = 16;
 constexpr std::size_t kSiaddr = 20;
@@ -22,13 +21,17 @@ constexpr std::size_t kChaddr = 28;
 
 void EncodeBootRequest(const BootRequest& request, std::span<std::uint8_t, kBootpMessageSize> out) {
   std::fill(out.begin(), out.end(), std::uint8_t{0});  // hops, addresses, sname, file, padding
-  out[0] = kBootRequest;
-  out[1] = kHtypeEthernet;
-  out[2] = kHlenEthernet;
-  StoreBe32(request.xid, out.subspan<kXid, 4>());
-  StoreBe16(request.secs, out.subspan<kSecs, 2>());
-  StoreBe16(request.broadcast ? kBootpBroadcastFlag : std::uint16_t{0}, out.subspan<kFlags, 2>());
-  StoreMac(request.mac, out.subspan<kChaddr, 6>());
+  // The fields up to chaddr fit the fixed part's 236 bytes: the writer cannot fail.
+  base::ByteWriter fixed(out.first<kBootpFixedSize>());
+  fixed.U8(kBootRequest);
+  fixed.U8(kHtypeEthernet);
+  fixed.U8(kHlenEthernet);
+  fixed.Zeros(kXid - 3);  // hops
+  fixed.U32Be(request.xid);
+  fixed.U16Be(request.secs);
+  fixed.U16Be(request.broadcast ? kBootpBroadcastFlag : std::uint16_t{0});
+  fixed.Zeros(kChaddr - kFlags - 2);  // ciaddr, yiaddr, siaddr, giaddr
+  request.mac.Write(fixed);
   // RFC 1497: the cookie says "options follow"; none are asked for, so only the end option.
   DhcpOptionWriter vendor(out.subspan<kBootpFixedSize, kBootpVendorSize>());
   vendor.Cookie();
@@ -36,30 +39,35 @@ void EncodeBootRequest(const BootRequest& request, std::span<std::uint8_t, kBoot
   vendor.status().IgnoreError();  // 5 bytes into 64: cannot fail
 }
 
-bool IsUsableUnicast(Ipv4Address address) {
-  const std::uint32_t first = address >> 24;
+bool IsUsableUnicast(base::Ipv4Address address) {
+  const std::uint32_t first = address.octets()[0];
   return first != 0 && first != 127 && first < 224;
 }
 
-bool IsContiguousMask(Ipv4Address mask) {
+bool IsContiguousMask(base::Ipv4Address mask) {
   // Ones from the top, then zeros: the inverted mask plus one is a power of two.
-  const std::uint32_t inverted = ~mask;
-  return mask != 0 && (inverted & (inverted + 1)) == 0;
+  const std::uint32_t inverted = ~mask.HostOrder();
+  return !mask.IsUnspecified() && (inverted & (inverted + 1)) == 0;
 }
 
 base::Result<BootReply> ParseBootReply(std::span<const std::uint8_t> payload, std::uint32_t xid,
-                                       const MacAddress& mac) {
+                                       const base::MacAddress& mac) {
   if (payload.size() < kBootpFixedSize) return base::OutOfRange();
-  const std::span<const std::uint8_t, kBootpFixedSize> fixed = payload.first<kBootpFixedSize>();
-  if (fixed[0] != kBootReply || fixed[1] != kHtypeEthernet || fixed[2] != kHlenEthernet) {
-    return base::InvalidArgument();
-  }
-  if (LoadBe32(fixed.subspan<kXid, 4>()) != xid || LoadMac(fixed.subspan<kChaddr, 6>()) != mac) {
-    return base::NotFound();
-  }
+  // Every field read lies in the fixed part, which is there: the reader cannot fail.
+  base::ByteReader fixed(payload.first(kBootpFixedSize));
+  const std::uint8_t op = fixed.U8();
+  const std::uint8_t htype = fixed.U8();
+  const std::uint8_t hlen = fixed.U8();
+  fixed.Skip(kXid - 3);  // hops
+  const std::uint32_t reply_xid = fixed.U32Be();
+  fixed.Skip(kYiaddr - kXid - 4);  // secs, flags, ciaddr
   BootReply reply;
-  reply.your_address = LoadBe32(fixed.subspan<kYiaddr, 4>());
-  reply.server_address = LoadBe32(fixed.subspan<kSiaddr, 4>());
+  reply.your_address = base::Ipv4Address::Read(fixed);
+  reply.server_address = base::Ipv4Address::Read(fixed);
+  fixed.Skip(kChaddr - kSiaddr - 4);  // giaddr
+  const base::MacAddress reply_mac = base::MacAddress::Read(fixed);
+  if (op != kBootReply || htype != kHtypeEthernet || hlen != kHlenEthernet) return base::InvalidArgument();
+  if (reply_xid != xid || reply_mac != mac) return base::NotFound();
   if (!IsUsableUnicast(reply.your_address)) return base::InvalidArgument();
   const base::Result<std::span<const std::uint8_t>> options = OptionsAfterCookie(payload.subspan(kBootpFixedSize));
   if (!options.ok()) return reply;  // no RFC 1497 vendor information: address only

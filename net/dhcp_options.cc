@@ -50,10 +50,16 @@ base::Result<IpOptions> ParseIpOptions(std::span<const std::uint8_t> options) {
     const auto code = static_cast<DhcpOptionCode>(option.code);
     if (code == DhcpOptionCode::kSubnetMask) {
       if (option.data.size() != 4) return base::InvalidArgument();
-      if (!result.subnet_mask) result.subnet_mask = LoadBe32(option.data.first<4>());
+      if (!result.subnet_mask) {
+        base::ByteReader data(option.data);
+        result.subnet_mask = base::Ipv4Address::Read(data);
+      }
     } else if (code == DhcpOptionCode::kRouter) {
       if (option.data.empty() || option.data.size() % 4 != 0) return base::InvalidArgument();
-      if (!result.router) result.router = LoadBe32(option.data.first<4>());
+      if (!result.router) {
+        base::ByteReader data(option.data);
+        result.router = base::Ipv4Address::Read(data);
+      }
     }
   }
 }

@@ -5,16 +5,20 @@ namespace {
 
 constexpr std::size_t kHeaderSize = 14;
 
-MacAddress Destination(std::span<const std::uint8_t> frame) {
-  return LoadMac(frame.subspan<0, 6>());
+base::MacAddress Destination(std::span<const std::uint8_t> frame) {
+  base::ByteReader header(frame);
+  return base::MacAddress::Read(header);
 }
 
-MacAddress Source(std::span<const std::uint8_t> frame) { return LoadMac(frame.subspan<6, 6>()); }
-
-bool IsGroup(const MacAddress& mac) { return (mac[0] & 0x01) != 0; }
+base::MacAddress Source(std::span<const std::uint8_t> frame) {
+  base::ByteReader header(frame);
+  header.Skip(base::MacAddress::kSize);
+  return base::MacAddress::Read(header);
+}
 
 // 01-80-C2-00-00-00 .. 0F: IEEE 802.1D reserved addresses, filtered by every bridge.
-bool IsBridgeReserved(const MacAddress& mac) {
+bool IsBridgeReserved(const base::MacAddress& address) {
+  const base::MacAddress::Octets& mac = address.octets();
   return mac[0] == 0x01 && mac[1] == 0x80 && mac[2] == 0xC2 && mac[3] == 0x00 && mac[4] == 0x00 &&
          (mac[5] & 0xF0) == 0x00;
 }
@@ -24,15 +28,15 @@ bool IsBridgeReserved(const MacAddress& mac) {
 SwitchDelivery FrameSwitch::Ingress(std::span<const std::uint8_t> frame, std::size_t port) {
   SwitchDelivery delivery;
   if (frame.size() < kHeaderSize || port >= port_count_) return delivery;
-  const MacAddress destination = Destination(frame.first<kHeaderSize>());
-  const MacAddress source = Source(frame.first<kHeaderSize>());
-  if (!IsGroup(source) && source != own_mac_) Learn(source, port);
+  const base::MacAddress destination = Destination(frame.first<kHeaderSize>());
+  const base::MacAddress source = Source(frame.first<kHeaderSize>());
+  if (!source.IsMulticast() && source != own_mac_) Learn(source, port);
 
   if (destination == own_mac_) {
     delivery.to_card = true;
     return delivery;
   }
-  const bool group = IsGroup(destination);
+  const bool group = destination.IsMulticast();
   delivery.to_card = group;
   if (group && IsBridgeReserved(destination)) return delivery;
   const std::size_t learned_on = group ? kSwitchPorts : PortOf(destination);
@@ -58,7 +62,7 @@ void FrameSwitch::PortDown(std::size_t port) {
   oldest_ = 0;
 }
 
-std::size_t FrameSwitch::PortOf(const MacAddress& mac) const {
+std::size_t FrameSwitch::PortOf(const base::MacAddress& mac) const {
   // Group addresses are never learned, so they are never found.
   for (std::size_t i = 0; i < count_; ++i) {
     if (entries_[i].mac == mac) return entries_[i].port;
@@ -66,7 +70,7 @@ std::size_t FrameSwitch::PortOf(const MacAddress& mac) const {
   return kSwitchPorts;
 }
 
-void FrameSwitch::Learn(const MacAddress& mac, std::size_t port) {
+void FrameSwitch::Learn(const base::MacAddress& mac, std::size_t port) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (entries_[i].mac == mac) {
       entries_[i].port = static_cast<std::uint8_t>(port);

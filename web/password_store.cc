@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
+
 namespace web {
 namespace {
 
@@ -16,20 +19,23 @@ std::size_t Index(PasswordKind which) { return static_cast<std::size_t>(which); 
 bool IterationsAllowed(std::uint32_t iterations) { return iterations >= 1 && iterations <= kMaxPasswordIterations; }
 
 void EncodeRecord(const PasswordRecord& record, std::span<std::uint8_t, kPasswordRecordBytes> out) {
-  out[0] = record.is_default ? kFlagDefault : std::uint8_t{0};
-  for (std::size_t i = 0; i < 4; ++i) out[1 + i] = static_cast<std::uint8_t>(record.iterations >> (8 * i));
-  std::copy(record.salt.begin(), record.salt.end(), out.begin() + 5);
-  std::copy(record.hash.begin(), record.hash.end(), out.begin() + 5 + kPasswordSaltBytes);
+  base::ByteWriter writer(out);  // flag, iterations, salt and hash fill the record exactly
+  writer.U8(record.is_default ? kFlagDefault : std::uint8_t{0});
+  writer.U32Le(record.iterations);
+  writer.Bytes(record.salt);
+  writer.Bytes(record.hash);
 }
 
 base::Result<PasswordRecord> ParseRecord(std::span<const std::uint8_t, kPasswordRecordBytes> in) {
-  if ((in[0] & ~kFlagDefault) != 0) return base::DataLoss();
+  base::ByteReader reader(in);  // the record's fixed size holds every field: the reader cannot fail
+  const std::uint8_t flags = reader.U8();
+  if ((flags & ~kFlagDefault) != 0) return base::DataLoss();
   PasswordRecord record;
-  record.is_default = (in[0] & kFlagDefault) != 0;
-  for (std::size_t i = 0; i < 4; ++i) record.iterations |= static_cast<std::uint32_t>(in[1 + i]) << (8 * i);
+  record.is_default = (flags & kFlagDefault) != 0;
+  record.iterations = reader.U32Le();
   if (!IterationsAllowed(record.iterations)) return base::DataLoss();
-  const auto salt = in.subspan<5, kPasswordSaltBytes>();
-  const auto hash = in.subspan<5 + kPasswordSaltBytes, kSha256Bytes>();
+  const std::span<const std::uint8_t> salt = reader.Bytes(kPasswordSaltBytes);
+  const std::span<const std::uint8_t> hash = reader.Bytes(kSha256Bytes);
   std::copy(salt.begin(), salt.end(), record.salt.begin());
   std::copy(hash.begin(), hash.end(), record.hash.begin());
   return record;

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <bit>
 
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
+
 namespace web {
 namespace {
 
@@ -33,15 +36,6 @@ std::uint32_t BigSigma1(std::uint32_t x) { return std::rotr(x, 6) ^ std::rotr(x,
 std::uint32_t SmallSigma0(std::uint32_t x) { return std::rotr(x, 7) ^ std::rotr(x, 18) ^ (x >> 3); }
 std::uint32_t SmallSigma1(std::uint32_t x) { return std::rotr(x, 17) ^ std::rotr(x, 19) ^ (x >> 10); }
 
-std::uint32_t LoadBigEndian(std::span<const std::uint8_t, 4> bytes) {
-  return static_cast<std::uint32_t>(bytes[0]) << 24 | static_cast<std::uint32_t>(bytes[1]) << 16 |
-         static_cast<std::uint32_t>(bytes[2]) << 8 | static_cast<std::uint32_t>(bytes[3]);
-}
-
-void StoreBigEndian(std::uint32_t value, std::span<std::uint8_t, 4> bytes) {
-  for (std::size_t i = 0; i < 4; ++i) bytes[i] = static_cast<std::uint8_t>(value >> (24 - 8 * i));
-}
-
 }  // namespace
 
 void Sha256::Reset() {
@@ -54,7 +48,8 @@ void Sha256::Reset() {
 // needs W_{t-16} .. W_{t-1}): 192 bytes less stack on the card.
 void Sha256::Compress(std::span<const std::uint8_t, kSha256BlockBytes> block) {
   std::array<std::uint32_t, 16> w{};
-  for (std::size_t t = 0; t < 16; ++t) w[t] = LoadBigEndian(block.subspan(4 * t).first<4>());
+  base::ByteReader words(block);  // 64 bytes, 16 words: cannot fail
+  for (std::uint32_t& word : w) word = words.U32Be();
   std::uint32_t a = state_[0], b = state_[1], c = state_[2], d = state_[3];
   std::uint32_t e = state_[4], f = state_[5], g = state_[6], h = state_[7];
   for (std::size_t t = 0; t < 64; ++t) {
@@ -111,14 +106,12 @@ Sha256Digest Sha256::Finish() {
     pending_bytes_ = 0;
   }
   std::fill(pending_.begin() + static_cast<std::ptrdiff_t>(pending_bytes_), pending_.end() - 8, std::uint8_t{0});
-  for (std::size_t i = 0; i < 8; ++i) {
-    pending_[kSha256BlockBytes - 8 + i] = static_cast<std::uint8_t>(bits >> (56 - 8 * i));
-  }
+  base::ByteWriter length{std::span(pending_).last<8>()};
+  length.U64Be(bits);
   Compress(pending_);
   Sha256Digest digest{};
-  for (std::size_t i = 0; i < state_.size(); ++i) {
-    StoreBigEndian(state_[i], std::span(digest).subspan(4 * i).first<4>());
-  }
+  base::ByteWriter out(digest);  // 8 words into 32 bytes: cannot fail
+  for (std::uint32_t word : state_) out.U32Be(word);
   Reset();
   return digest;
 }
@@ -160,7 +153,8 @@ Pbkdf2Sha256::Pbkdf2Sha256(std::span<const std::uint8_t> password, std::span<con
 void Pbkdf2Sha256::StartBlock() {
   ++block_;
   std::array<std::uint8_t, 4> index{};
-  StoreBigEndian(block_, index);
+  base::ByteWriter index_writer(index);
+  index_writer.U32Be(block_);
   prf_.Update(salt_);
   prf_.Update(index);
   u_ = prf_.Finish();

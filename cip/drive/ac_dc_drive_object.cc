@@ -81,7 +81,7 @@ AcDcDriveObject::AcDcDriveObject(DriveProfileRuntime& runtime, DriveAccessJourna
 
 std::span<const AttributeSpec> AcDcDriveObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void AcDcDriveObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void AcDcDriveObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case kNumAttr:
       out.U8(static_cast<std::uint8_t>(kAttributes.size()));
@@ -96,11 +96,11 @@ void AcDcDriveObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, Byte
       out.U8(kDriveModeOpenLoopSpeed);
       return;
     case kSpeedRef:
-      out.U16(static_cast<std::uint16_t>(runtime_.speed_reference_rpm()));
+      out.U16Le(static_cast<std::uint16_t>(runtime_.speed_reference_rpm()));
       return;
     case kPowerScaling:
     case kTimeScaling:
-      out.U16(0);
+      out.U16Le(0);
       return;
     case kRefFromNet:
       out.U8(runtime_.control_sources().ref_from_net ? 1 : 0);
@@ -113,7 +113,7 @@ void AcDcDriveObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, Byte
 
 // The register-backed attributes: every read of a service is started in its first pass (they then
 // travel together), and nothing is written unless all the values are there.
-void AcDcDriveObject::GetRegisterAttribute(std::uint16_t id, ByteWriter& out) {
+void AcDcDriveObject::GetRegisterAttribute(std::uint16_t id, base::ByteWriter& out) {
   const std::uint16_t pole_pairs = runtime_.pole_pairs();
   switch (id) {
     case kAtReference: {
@@ -125,52 +125,52 @@ void AcDcDriveObject::GetRegisterAttribute(std::uint16_t id, ByteWriter& out) {
       return;
     }
     case kSpeedActual:
-      if (const auto fd00 = ReadRegister(reg::kFd00)) out.U16(FrequencyToRpm(*fd00, pole_pairs));
+      if (const auto fd00 = ReadRegister(reg::kFd00)) out.U16Le(FrequencyToRpm(*fd00, pole_pairs));
       return;
     case kCurrentActual: {
       const auto fd03 = ReadRegister(kOutputCurrent);
       const auto fe70 = ReadRegister(kDriveRatedCurrent);
-      if (fd03 && fe70) out.U16(CurrentTenthsOfAmp(*fd03, *fe70));
+      if (fd03 && fe70) out.U16Le(CurrentTenthsOfAmp(*fd03, *fe70));
       return;
     }
     case kCurrentLimit: {
       const auto f601 = ReadRegister(reg::kF601);
       const auto fe70 = ReadRegister(kDriveRatedCurrent);
-      if (f601 && fe70) out.U16(CurrentLimitTenths(*f601, *fe70));
+      if (f601 && fe70) out.U16Le(CurrentLimitTenths(*f601, *fe70));
       return;
     }
     case kTorqueActual: {
       const auto fd18 = ReadRegister(kTorque);
       const auto f405 = ReadRegister(kRatedMotorPower);
       const auto f417 = ReadRegister(kRatedMotorSpeed);
-      if (fd18 && f405 && f417) out.U16(TorqueNewtonMetres(static_cast<std::int16_t>(*fd18), *f405, *f417));
+      if (fd18 && f405 && f417) out.U16Le(TorqueNewtonMetres(static_cast<std::int16_t>(*fd18), *f405, *f417));
       return;
     }
     case kPowerActual:
-      if (const auto fd30 = ReadRegister(kOutputPower)) out.U16(Saturate16(static_cast<std::uint32_t>(*fd30) * 10u));
+      if (const auto fd30 = ReadRegister(kOutputPower)) out.U16Le(Saturate16(static_cast<std::uint32_t>(*fd30) * 10u));
       return;
     case kAccelTime:
     case kDecelTime: {
       const auto ramp = ReadRegister(id == kAccelTime ? reg::kAcc : reg::kDec);
       const auto unit = ReadRegister(kTimeUnit);
-      if (ramp && unit) out.U16(TimeParameterToMillis(*ramp, *unit == kTimeUnitHundredths));
+      if (ramp && unit) out.U16Le(TimeParameterToMillis(*ramp, *unit == kTimeUnitHundredths));
       return;
     }
     case kLowSpdLimit:
     case kHighSpdLimit:
       if (const auto limit = ReadRegister(id == kLowSpdLimit ? kLowerLimitFrequency : reg::kUl)) {
-        out.U16(FrequencyToRpm(*limit, pole_pairs));
+        out.U16Le(FrequencyToRpm(*limit, pole_pairs));
       }
       return;
     case kHoursOn:
-      if (const auto fe14 = ReadRegister(reg::kFe14)) out.U32(*fe14);
+      if (const auto fe14 = ReadRegister(reg::kFe14)) out.U32Le(*fe14);
       return;
     default:
       return;
   }
 }
 
-ServiceStatus AcDcDriveObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteReader& value) {
+ServiceStatus AcDcDriveObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteReader& value) {
   if (id == kNetRef) {
     bool level = false;
     const ServiceStatus decoded = ReadExactBool(value, level);

@@ -1,7 +1,8 @@
 // Bit maps of the §5 assemblies (assembly_codec.h, docs/drive-profile.md).
 #include "cip/drive/assembly_codec.h"
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "drive_link/drive_registers.h"
 
 namespace cip::drive {
@@ -31,7 +32,7 @@ constexpr std::uint8_t kAtReference = 1u << 7;  // 71, 151
 // 150 word 0: FD01 without the bits §5.1.6 leaves "-" (3 undervoltage, 15 reserved).
 constexpr std::uint16_t kNativeStatusMask = static_cast<std::uint16_t>(~(kFd01Undervoltage | kFd01Reserved));
 
-void DecodeSpeedControl(ByteReader& in, bool extended, DriveCommand& command) {
+void DecodeSpeedControl(base::ByteReader& in, bool extended, DriveCommand& command) {
   const std::uint8_t bits = in.U8();
   in.Skip(1);
   command.profile = CommandProfile::kCipSpeed;
@@ -43,16 +44,16 @@ void DecodeSpeedControl(ByteReader& in, bool extended, DriveCommand& command) {
     command.net_ctrl = (bits & kNetCtrl) != 0;
     command.net_ref = (bits & kNetRef) != 0;
   }
-  command.speed_reference_rpm = static_cast<std::int16_t>(in.U16());
+  command.speed_reference_rpm = static_cast<std::int16_t>(in.U16Le());
 }
 
-void DecodeScannerWords(ByteReader& in, DriveCommand& command) {
+void DecodeScannerWords(base::ByteReader& in, DriveCommand& command) {
   const std::size_t count = in.remaining() / 2;
   command.scanner_count = static_cast<std::uint8_t>(count);
-  for (std::size_t i = 0; i < count; ++i) command.scanner_words[i] = in.U16();
+  for (std::size_t i = 0; i < count; ++i) command.scanner_words[i] = in.U16Le();
 }
 
-void EncodeSpeedStatus(const DriveFeedback& feedback, bool extended, ByteWriter& out) {
+void EncodeSpeedStatus(const DriveFeedback& feedback, bool extended, base::ByteWriter& out) {
   std::uint8_t bits = 0;
   if (feedback.faulted) bits |= kFaulted;
   if (feedback.running_forward) bits |= kRunning1;
@@ -66,33 +67,33 @@ void EncodeSpeedStatus(const DriveFeedback& feedback, bool extended, ByteWriter&
   }
   out.U8(bits);
   out.U8(extended ? static_cast<std::uint8_t>(feedback.state) : 0);
-  out.U16(feedback.speed_actual_rpm);
+  out.U16Le(feedback.speed_actual_rpm);
 }
 
-void EncodeMonitorWords(const DriveFeedback& feedback, ByteWriter& out) {
-  for (std::size_t i = 0; out.room() >= 2 && i < feedback.monitor_words.size(); ++i) out.U16(feedback.monitor_words[i]);
+void EncodeMonitorWords(const DriveFeedback& feedback, base::ByteWriter& out) {
+  for (std::size_t i = 0; out.room() >= 2 && i < feedback.monitor_words.size(); ++i) out.U16Le(feedback.monitor_words[i]);
 }
 
 // 151 bytes 4-7.
-void EncodeParameter151(const ParameterResponse& response, ByteWriter& out) {
+void EncodeParameter151(const ParameterResponse& response, base::ByteWriter& out) {
   if (!response.present) {
-    out.U16(0);
-    out.U16(0);
+    out.U16Le(0);
+    out.U16Le(0);
     return;
   }
   std::uint16_t index = static_cast<std::uint16_t>(response.number & kParameterIndexMask);
   if (response.write) index |= kParameterWriteFlag;
   if (response.error) index |= kParameterErrorFlag;
-  out.U16(index);
-  out.U16(response.error ? Error151(response.cause) : response.value);
+  out.U16Le(index);
+  out.U16Le(response.error ? Error151(response.cause) : response.value);
 }
 
 // 155 bytes 0-5.
-void EncodeParameter155(const ParameterResponse& response, ByteWriter& out) {
+void EncodeParameter155(const ParameterResponse& response, base::ByteWriter& out) {
   out.U8(0);
   out.U8(response.present && response.error ? kFunctionResultError : 0);
-  out.U16(response.present ? response.number : 0);
-  out.U16(!response.present ? 0 : response.error ? kErrorToshibaSpecific : response.value);
+  out.U16Le(response.present ? response.number : 0);
+  out.U16Le(!response.present ? 0 : response.error ? kErrorToshibaSpecific : response.value);
 }
 
 }  // namespace
@@ -156,7 +157,7 @@ bool DecodeOutput(std::uint32_t instance, std::span<const std::uint8_t> data, Dr
   if (!IsOutputInstance(instance) || !IsValidSize(instance, data.size())) return false;
   DriveCommand decoded;
   decoded.instance = static_cast<std::uint16_t>(instance);
-  ByteReader in(data);
+  base::ByteReader in(data);
   switch (instance) {
     case kBasicSpeedOutput:
       DecodeSpeedControl(in, false, decoded);
@@ -166,8 +167,8 @@ bool DecodeOutput(std::uint32_t instance, std::span<const std::uint8_t> data, Dr
       break;
     case kNativeOutput: {
       decoded.profile = CommandProfile::kNative;
-      decoded.native_command = in.U16();
-      decoded.native_frequency = in.U16();
+      decoded.native_command = in.U16Le();
+      decoded.native_frequency = in.U16Le();
       decoded.has_net_bits = true;
       decoded.net_ctrl = (decoded.native_command & drive_link::reg::command_bit::kCommandPriority) != 0;
       decoded.net_ref = (decoded.native_command & drive_link::reg::command_bit::kFrequencyPriority) != 0;
@@ -177,11 +178,11 @@ bool DecodeOutput(std::uint32_t instance, std::span<const std::uint8_t> data, Dr
     }
     case kNativeParameterOutput: {
       DecodeSpeedControl(in, true, decoded);
-      const std::uint16_t index = in.U16();
+      const std::uint16_t index = in.U16Le();
       decoded.parameter.present = true;
       decoded.parameter.write = (index & kParameterWriteFlag) != 0;
       decoded.parameter.number = static_cast<std::uint16_t>(index & kParameterIndexMask);
-      decoded.parameter.data = in.U16();
+      decoded.parameter.data = in.U16Le();
       decoded.parameter.function = decoded.parameter.write ? kFunctionWrite : kFunctionRead;
       break;
     }
@@ -197,8 +198,8 @@ bool DecodeOutput(std::uint32_t instance, std::span<const std::uint8_t> data, Dr
       decoded.parameter.function = function;
       decoded.parameter.valid = function == kFunctionRead || function == kFunctionWrite;
       decoded.parameter.write = function == kFunctionWrite;
-      decoded.parameter.number = in.U16();
-      decoded.parameter.data = in.U16();
+      decoded.parameter.number = in.U16Le();
+      decoded.parameter.data = in.U16Le();
       DecodeScannerWords(in, decoded);
       break;
     }
@@ -212,7 +213,7 @@ bool DecodeOutput(std::uint32_t instance, std::span<const std::uint8_t> data, Dr
 
 bool EncodeInput(std::uint32_t instance, const DriveFeedback& feedback, std::span<std::uint8_t> out) {
   if (!IsInputInstance(instance) || !IsValidSize(instance, out.size())) return false;
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   switch (instance) {
     case kBasicSpeedInput:
       EncodeSpeedStatus(feedback, false, writer);
@@ -221,8 +222,8 @@ bool EncodeInput(std::uint32_t instance, const DriveFeedback& feedback, std::spa
       EncodeSpeedStatus(feedback, true, writer);
       break;
     case kNativeInput:
-      writer.U16(static_cast<std::uint16_t>(feedback.status_word & kNativeStatusMask));
-      writer.U16(feedback.output_frequency);
+      writer.U16Le(static_cast<std::uint16_t>(feedback.status_word & kNativeStatusMask));
+      writer.U16Le(feedback.output_frequency);
       EncodeMonitorWords(feedback, writer);
       break;
     case kNativeParameterInput:

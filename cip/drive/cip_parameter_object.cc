@@ -38,7 +38,7 @@ const ParameterInfo* RowOf(std::uint32_t instance) {
   return &rows[instance - 1];
 }
 
-void PutText(const char* text, ByteWriter& out) {
+void PutText(const char* text, base::ByteWriter& out) {
   const std::string_view view(text);
   PutShortString(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(view.data()), view.size()), out);
 }
@@ -93,13 +93,13 @@ std::span<const AttributeSpec> CipParameterObject::InstanceAttributes(std::uint3
   return kAttributes<Access::kGetSet>;
 }
 
-void CipParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) {
+void CipParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) {
   const ParameterInfo* row = RowOf(instance);
   if (row == nullptr) return;  // the router let only existing instances through
   const drive_link::ParameterLimits& limits = row->Limits(InverterModelOf(device_.Model()));
   switch (id) {
     case kParameterValue:
-      if (const std::optional<std::uint16_t> value = ReadRegister(row->number)) out.U16(*value);
+      if (const std::optional<std::uint16_t> value = ReadRegister(row->number)) out.U16Le(*value);
       return;
     case 2:
       out.U8(static_cast<std::uint8_t>(kParameterLinkPathSize));
@@ -108,7 +108,7 @@ void CipParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint1
       out.Bytes(ParameterLinkPath(row->number));
       return;
     case 4:
-      out.U16(ParameterDescriptor(*row));
+      out.U16Le(ParameterDescriptor(*row));
       return;
     case 5:
       out.U8(ParameterDataType(*row));
@@ -126,23 +126,23 @@ void CipParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint1
       PutText(row->help, out);
       return;
     case 10:
-      out.U16(limits.min);
+      out.U16Le(limits.min);
       return;
     case 11:
-      out.U16(limits.max);
+      out.U16Le(limits.max);
       return;
     case 12:
-      out.U16(limits.default_value);
+      out.U16Le(limits.default_value);
       return;
     case 13:
     case 15:
-      out.U16(1);
+      out.U16Le(1);
       return;
     case 14:
-      out.U16(ScalingDivisor(*row));
+      out.U16Le(ScalingDivisor(*row));
       return;
     case 16:
-      out.U16(0);
+      out.U16Le(0);
       return;
     case 21:
       out.U8(row->decimals);
@@ -152,7 +152,7 @@ void CipParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint1
   }
 }
 
-ServiceStatus CipParameterObject::SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) {
+ServiceStatus CipParameterObject::SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) {
   const ParameterInfo* row = RowOf(instance);
   if (id != kParameterValue || row == nullptr) return Error(GeneralStatus::kAttributeNotSupported);
   std::uint16_t data = 0;
@@ -163,9 +163,9 @@ ServiceStatus CipParameterObject::SetInstanceAttribute(std::uint32_t instance, s
   return WriteRegister(row->number, data, kParameterWriteMode);
 }
 
-void CipParameterObject::GetClassAttribute(std::uint16_t id, ByteWriter& out) {
-  if (id == 8) out.U16(kParameterClassDescriptor);
-  if (id == 9) out.U16(kNoConfigurationAssembly);
+void CipParameterObject::GetClassAttribute(std::uint16_t id, base::ByteWriter& out) {
+  if (id == 8) out.U16Le(kParameterClassDescriptor);
+  if (id == 9) out.U16Le(kNoConfigurationAssembly);
   if (id == 10) out.U8(kNativeLanguageEnglish);
 }
 

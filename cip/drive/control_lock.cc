@@ -67,7 +67,7 @@ bool IsControlRequest(const ServiceRequest& request) {
 
 ServiceStatus ControlLock::Admit(const ServiceRequest& request) {
   if (!IsControlRequest(request)) return Success();
-  const std::uint32_t originator = request.context != nullptr ? request.context->peer.address : 0;
+  const base::Ipv4Address originator = request.context != nullptr ? request.context->peer.address : base::Ipv4Address();
   if (!connections_.OwnedByAnotherOriginator(originator)) return Success();
   ++refusals_;
   return Error(GeneralStatus::kDeviceStateConflict);

@@ -47,11 +47,11 @@ constexpr std::array<AttributeSpec, 13> kAttributes = {{
     {kCtrlFromNet, Access::kGet, false},
 }};
 
-void PutBool(bool value, ByteWriter& out) { out.U8(value ? 1 : 0); }
+void PutBool(bool value, base::ByteWriter& out) { out.U8(value ? 1 : 0); }
 
 }  // namespace
 
-ServiceStatus ReadExactBool(ByteReader& in, bool& value) {
+ServiceStatus ReadExactBool(base::ByteReader& in, bool& value) {
   std::uint8_t byte = 0;
   const ServiceStatus size = ReadExactU8(in, byte);
   if (!size.ok()) return size;
@@ -67,13 +67,13 @@ std::span<const AttributeSpec> ControlSupervisorObject::InstanceAttributes(std::
   return kAttributes;
 }
 
-void ControlSupervisorObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void ControlSupervisorObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   // The state follows the newest FD01 even when nothing else stepped the supervisor since it changed.
   runtime_.Refresh();
   const ControlSupervisor& supervisor = runtime_.supervisor();
   switch (id) {
     case kNumAttr:
-      out.U16(static_cast<std::uint16_t>(kAttributes.size()));
+      out.U16Le(static_cast<std::uint16_t>(kAttributes.size()));
       return;
     case kAttrList:
       for (const AttributeSpec& attribute : kAttributes) out.U8(static_cast<std::uint8_t>(attribute.id));
@@ -116,7 +116,7 @@ void ControlSupervisorObject::GetInstanceAttribute(std::uint32_t, std::uint16_t 
   }
 }
 
-ServiceStatus ControlSupervisorObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteReader& value) {
+ServiceStatus ControlSupervisorObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteReader& value) {
   bool level = false;
   const ServiceStatus decoded = ReadExactBool(value, level);
   if (!decoded.ok()) return decoded;
@@ -134,7 +134,7 @@ ServiceStatus ControlSupervisorObject::SetInstanceAttribute(std::uint32_t, std::
   }
 }
 
-ServiceStatus ControlSupervisorObject::ExecuteOther(const ServiceRequest& request, ByteWriter&) {
+ServiceStatus ControlSupervisorObject::ExecuteOther(const ServiceRequest& request, base::ByteWriter&) {
   if (request.service != kServiceReset) return Error(GeneralStatus::kServiceNotSupported);
   if (!request.data.empty()) return Error(GeneralStatus::kTooMuchData);  // §4.6's Reset has no parameter
   return runtime_.ResetSupervisor();

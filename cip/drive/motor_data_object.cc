@@ -34,10 +34,10 @@ MotorDataObject::MotorDataObject(DriveAccessJournal& journal)
 
 std::span<const AttributeSpec> MotorDataObject::InstanceAttributes(std::uint32_t) const { return kAttributes; }
 
-void MotorDataObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteWriter& out) {
+void MotorDataObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteWriter& out) {
   switch (id) {
     case 1:
-      out.U16(static_cast<std::uint16_t>(kAttributes.size()));
+      out.U16Le(static_cast<std::uint16_t>(kAttributes.size()));
       return;
     case 2:
       for (const AttributeSpec& attribute : kAttributes) out.U8(static_cast<std::uint8_t>(attribute.id));
@@ -51,29 +51,29 @@ void MotorDataObject::GetInstanceAttribute(std::uint32_t, std::uint16_t id, Byte
   // The register-backed ones: nothing is written unless the value is there.
   switch (id) {
     case 6:
-      if (const auto f415 = ReadRegister(kMotorRatedCurrentParameter)) out.U16(*f415);
+      if (const auto f415 = ReadRegister(kMotorRatedCurrentParameter)) out.U16Le(*f415);
       return;
     case 7:
-      if (const auto vlv = ReadRegister(kMotorRatedVoltageParameter)) out.U16(VoltsFromVlv(*vlv));
+      if (const auto vlv = ReadRegister(kMotorRatedVoltageParameter)) out.U16Le(VoltsFromVlv(*vlv));
       return;
     case 8:
-      if (const auto f405 = ReadRegister(kMotorRatedPowerParameter)) out.U32(WattsFromF405(*f405));
+      if (const auto f405 = ReadRegister(kMotorRatedPowerParameter)) out.U32Le(WattsFromF405(*f405));
       return;
     case 9:
-      if (const auto vl = ReadRegister(kMotorBaseFrequencyParameter)) out.U16(HertzFromVl(*vl));
+      if (const auto vl = ReadRegister(kMotorBaseFrequencyParameter)) out.U16Le(HertzFromVl(*vl));
       return;
     case 12:
-      if (const auto f856 = ReadRegister(kMotorPolePairsParameter)) out.U16(PoleCountFromF856(*f856));
+      if (const auto f856 = ReadRegister(kMotorPolePairsParameter)) out.U16Le(PoleCountFromF856(*f856));
       return;
     case 15:
-      if (const auto f417 = ReadRegister(kMotorBaseSpeedParameter)) out.U16(*f417);
+      if (const auto f417 = ReadRegister(kMotorBaseSpeedParameter)) out.U16Le(*f417);
       return;
     default:
       return;
   }
 }
 
-ServiceStatus MotorDataObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, ByteReader& value) {
+ServiceStatus MotorDataObject::SetInstanceAttribute(std::uint32_t, std::uint16_t id, base::ByteReader& value) {
   std::uint16_t number = 0;
   std::optional<std::uint16_t> register_value;
   ServiceStatus size;

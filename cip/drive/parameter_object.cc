@@ -85,13 +85,13 @@ std::span<const AttributeSpec> ParameterObject::InstanceAttributes(std::uint32_t
   return kSettableValue;
 }
 
-void ParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) {
+void ParameterObject::GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) {
   const std::optional<std::uint16_t> number = ParameterNumber(class_, instance);
   if (id != kParameterValueAttribute || !number) return;  // the router let only existing ones through
-  if (const std::optional<std::uint16_t> value = ReadRegister(*number)) out.U16(*value);
+  if (const std::optional<std::uint16_t> value = ReadRegister(*number)) out.U16Le(*value);
 }
 
-ServiceStatus ParameterObject::SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) {
+ServiceStatus ParameterObject::SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) {
   const std::optional<std::uint16_t> number = ParameterNumber(class_, instance);
   if (id != kParameterValueAttribute || !number) return Error(GeneralStatus::kAttributeNotSupported);
   std::uint16_t data = 0;

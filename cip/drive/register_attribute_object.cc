@@ -46,7 +46,7 @@ void RegisterAttributeHandler::Record(const JournalAnswer& answer, AccessKind ki
   }
 }
 
-ServiceStatus RegisterAttributeObject::Execute(const ServiceRequest& request, ByteWriter& reply) {
+ServiceStatus RegisterAttributeObject::Execute(const ServiceRequest& request, base::ByteWriter& reply) {
   handler_.BeginService(request.context);
   const ServiceStatus status = attributes_.Execute(request, reply);
   // AttributeObject reports success after a getter; the getter's access may have said otherwise.

@@ -25,7 +25,7 @@
 
 namespace cip::test {
 
-inline constexpr std::uint32_t kOriginator = 0x0A000202;  // 10.0.2.2
+inline constexpr base::Ipv4Address kOriginator{10, 0, 2, 2};
 inline constexpr std::uint32_t kSession = 0x5EE55105;
 
 class FakeIo final : public IoApplication {
@@ -144,7 +144,7 @@ inline Bytes ForwardOpenRequestBytes(const OpenParams& params) {
   request.transport = DecodeTransportClassTrigger(params.transport);
   request.connection_path = params.path;
   Bytes out(64 + params.path.size());
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   writer.U8(params.large ? kServiceLargeForwardOpen : kServiceForwardOpen);
   writer.U8(2);
   writer.Bytes(Hex("20 06 24 01"));
@@ -175,7 +175,7 @@ inline Bytes ForwardCloseRequestBytes(const ConnectionTriad& triad,
   request.triad = triad;
   request.connection_path = path;
   Bytes out(32 + path.size());
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   writer.U8(kServiceForwardClose);
   writer.U8(2);
   writer.Bytes(Hex("20 06 24 01"));
@@ -192,7 +192,7 @@ inline Bytes IoDatagramBytes(std::uint32_t connection_id, std::uint32_t encapsul
   if (header) payload = {static_cast<std::uint8_t>(run ? 1 : 0), 0, 0, 0};
   for (std::uint8_t byte : data) payload.push_back(byte);
   Bytes out(64 + payload.size());
-  ByteWriter writer(out);
+  base::ByteWriter writer(out);
   EncodeIoDatagram(connection_id, encapsulation_sequence, sequence, payload, writer);
   out.resize(writer.size());
   return out;
@@ -238,7 +238,7 @@ struct ConnectionCard {
   RecordingEvents events;
   ConnectionManager cm;
   RequestContext context;
-  std::uint32_t originator = kOriginator;  // the IP address requests come from
+  base::Ipv4Address originator = kOriginator;  // the IP address requests come from
   hal::Micros now = 1000000;
   Ipv4Endpoint last_to;
 };

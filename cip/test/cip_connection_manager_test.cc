@@ -519,7 +519,7 @@ TEST(CipConnectionManagerTest, ForwardCloseOnlyFromTheOriginator) {
   ASSERT_EQ(card.Open()[2], 0x00);
   Bytes reply(64);
   RequestContext stranger;
-  stranger.peer = Ipv4Endpoint{0x0A000299, 50000};
+  stranger.peer = Ipv4Endpoint{base::Ipv4Address(0x0A000299), 50000};
   const Bytes close = test::ForwardCloseRequestBytes({0x1337, 0x3333, 0x12345678});
   reply.resize(card.card.cip.router().HandleUnconnected(close, stranger, reply));
   EXPECT_EQ(reply, Refused("07 01", 0, 0xCE));

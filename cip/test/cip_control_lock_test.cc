@@ -23,20 +23,20 @@ using Access = drive_link::test::ScriptedDriveRegisters::Access;
 using test::Bytes;
 using test::Hex;
 
-constexpr std::uint32_t kOwner = 0x0A000001;     // 10.0.0.1
-constexpr std::uint32_t kStranger = 0x0A000002;  // 10.0.0.2
+constexpr base::Ipv4Address kOwner{10, 0, 0, 1};
+constexpr base::Ipv4Address kStranger{10, 0, 0, 2};
 
 // The Connection Manager's answer, without the connections: who owns the drive.
 class FakeConnectionTable final : public ConnectionTable {
  public:
   std::size_t ListConnections(std::span<ConnectionInfo>) const override { return 0; }
   bool IsOwned(std::uint32_t) const override { return false; }
-  bool OwnedByAnotherOriginator(std::uint32_t originator) const override {
+  bool OwnedByAnotherOriginator(base::Ipv4Address originator) const override {
     return owner.has_value() && *owner != originator;
   }
   ExtendedDeviceStatus IoStatus() const override { return ExtendedDeviceStatus::kNoIoConnections; }
 
-  std::optional<std::uint32_t> owner;
+  std::optional<base::Ipv4Address> owner;
 };
 
 // An Identity object stand-in that only counts the Resets that reach it.
@@ -45,7 +45,7 @@ class CountingIdentity final : public CipObject {
   std::uint16_t class_id() const override { return kClassIdentity; }
   bool HasInstance(std::uint32_t instance) const override { return instance <= 1; }
   bool SupportsService(std::uint32_t, std::uint8_t service) const override { return service == kServiceReset; }
-  ServiceStatus Execute(const ServiceRequest&, ByteWriter&) override {
+  ServiceStatus Execute(const ServiceRequest&, base::ByteWriter&) override {
     ++resets;
     return Success();
   }
@@ -65,7 +65,7 @@ class ControlLockTest : public ::testing::Test {
   }
 
   // A request from `originator`, retried as the encapsulation server does until it is answered.
-  Bytes AskFrom(std::uint32_t originator, const Bytes& request) {
+  Bytes AskFrom(base::Ipv4Address originator, const Bytes& request) {
     std::vector<std::uint8_t> reply(600);
     for (int pass = 0; pass < 8; ++pass) {
       RequestContext context;

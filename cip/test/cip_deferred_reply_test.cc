@@ -28,13 +28,13 @@ class SlowObject final : public RequestLifecycle {
   std::vector<std::uint32_t> finished;
   bool ready = false;
 
-  void Answer(RequestContext& context, std::uint16_t id, ByteWriter& out) {
+  void Answer(RequestContext& context, std::uint16_t id, base::ByteWriter& out) {
     ++executions[id];
     if (!done[id]) {
       context.pending = true;
       return;
     }
-    out.U16(static_cast<std::uint16_t>(0x1111 * id));
+    out.U16Le(static_cast<std::uint16_t>(0x1111 * id));
   }
 
   void OnRequestStarted(std::uint32_t requester) override { started.push_back(requester); }
@@ -51,7 +51,7 @@ class SlowCipObject final : public CipObject {
   bool SupportsService(std::uint32_t, std::uint8_t service) const override {
     return service == kServiceGetAttributeSingle;
   }
-  ServiceStatus Execute(const ServiceRequest& request, ByteWriter& reply) override {
+  ServiceStatus Execute(const ServiceRequest& request, base::ByteWriter& reply) override {
     if (!request.path.attribute || *request.path.attribute > 3) return Error(GeneralStatus::kAttributeNotSupported);
     slow_.Answer(*request.context, static_cast<std::uint16_t>(*request.path.attribute), reply);
     return Success();
@@ -106,7 +106,7 @@ class CipDeferredReplyTest : public ::testing::Test {
   CipDeferredReplyTest() {
     EXPECT_TRUE(registry_.Register(cip_object_).ok());
     server_.set_request_lifecycle(&slow_);
-    id_ = server_.OpenTcpConnection(Ipv4Endpoint{0x0A000202, 50000}, now_).value();
+    id_ = server_.OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(0x0A000202), 50000}, now_).value();
     const TcpStep step = server_.OnTcpData(id_, test::Concat(Header(0x65, 4, 0), Hex("01 00 00 00")), now_);
     const Bytes reply = Of(step.reply);
     session_ = static_cast<std::uint32_t>(reply.at(4) | reply.at(5) << 8 | reply.at(6) << 16 | reply.at(7) << 24);

@@ -17,7 +17,7 @@ using test::Of;
 
 class CipDeviceTest : public ::testing::Test {
  protected:
-  CipDeviceTest() { id_ = card_.cip.encapsulation().OpenTcpConnection(Ipv4Endpoint{0x0A000202, 51000}, 0).value(); }
+  CipDeviceTest() { id_ = card_.cip.encapsulation().OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(0x0A000202), 51000}, 0).value(); }
 
   Bytes Exchange(const Bytes& request) {
     const TcpStep step = card_.cip.encapsulation().OnTcpData(id_, request, 0);
@@ -62,7 +62,7 @@ TEST_F(CipDeviceTest, BroadcastListIdentityFromTheRealObjects) {
   card_.random.Push(0);  // no delay
   const Bytes request = Hex("63 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00 00");
   const UdpDecision decision =
-      card_.cip.encapsulation().OnUdpDatagram(request, UdpSource{Ipv4Endpoint{0x0A000202, 2222}, true}, 5);
+      card_.cip.encapsulation().OnUdpDatagram(request, UdpSource{Ipv4Endpoint{base::Ipv4Address(0x0A000202), 2222}, true}, 5);
   ASSERT_EQ(decision.action, UdpDecision::Action::kSendLater);
   EXPECT_EQ(decision.send_at, 5U);
   DueDatagram due;

@@ -97,7 +97,7 @@ Bytes RegisterSessionRequest() { return test::Concat(Header(0x65, 4, 0), Hex("01
 class CipEncapsulationServerTest : public ::testing::Test {
  protected:
   TcpConnectionId Open(std::uint32_t peer_address = 0x0A000202) {
-    return server_.OpenTcpConnection(Ipv4Endpoint{peer_address, 50000}, now_).value();
+    return server_.OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(peer_address), 50000}, now_).value();
   }
   // Feeds a whole request and returns the one reply (empty when there is none).
   Bytes Exchange(TcpConnectionId id, const Bytes& request, bool* close = nullptr) {
@@ -193,13 +193,13 @@ TEST_F(CipEncapsulationServerTest, HandleCollisionsAndZeroAreDrawnAgain) {
 
 TEST_F(CipEncapsulationServerTest, TooManyConnectionsAreRefused) {
   for (std::size_t i = 0; i < kMaxTcpConnections; ++i) Open();
-  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{1, 2}, now_).status(), base::ResourceExhausted());
-  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{1, 3}, now_).status(), base::ResourceExhausted());
+  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(1), 2}, now_).status(), base::ResourceExhausted());
+  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(1), 3}, now_).status(), base::ResourceExhausted());
   EXPECT_EQ(server_.connection_pool(),
             (base::PoolStats{kMaxTcpConnections, kMaxTcpConnections, kMaxTcpConnections, 2}));
   server_.CloseTcpConnection(TcpConnectionId{4});
   EXPECT_EQ(server_.connection_pool().used, kMaxTcpConnections - 1);
-  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{1, 2}, now_).value(), TcpConnectionId{4});
+  EXPECT_EQ(server_.OpenTcpConnection(Ipv4Endpoint{base::Ipv4Address(1), 2}, now_).value(), TcpConnectionId{4});
 }
 
 TEST_F(CipEncapsulationServerTest, SendRRDataReachesTheRouterAndWrapsItsReply) {
@@ -213,7 +213,7 @@ TEST_F(CipEncapsulationServerTest, SendRRDataReachesTheRouterAndWrapsItsReply) {
   ASSERT_EQ(router_.requests.size(), 1U);
   EXPECT_EQ(router_.requests[0], Hex("0E 03 20 01 24 01"));
   EXPECT_EQ(router_.last_context.session_handle, handle);
-  EXPECT_EQ(router_.last_context.peer, (Ipv4Endpoint{0x0A000202, 50000}));
+  EXPECT_EQ(router_.last_context.peer, (Ipv4Endpoint{base::Ipv4Address(0x0A000202), 50000}));
   EXPECT_EQ(router_.last_context.now, now_);
 }
 
@@ -410,8 +410,8 @@ TEST_F(CipEncapsulationServerTest, InactivityTimeoutClosesIdleConnections) {
 
 // --- UDP ------------------------------------------------------------------------------------------
 
-const UdpSource kUnicast{Ipv4Endpoint{0x0A000202, 44818}, false};
-const UdpSource kBroadcast{Ipv4Endpoint{0x0A000203, 50123}, true};
+const UdpSource kUnicast{Ipv4Endpoint{base::Ipv4Address(0x0A000202), 44818}, false};
+const UdpSource kBroadcast{Ipv4Endpoint{base::Ipv4Address(0x0A000203), 50123}, true};
 
 TEST_F(CipEncapsulationServerTest, UnicastListIdentityIsAnsweredAtOnce) {
   const UdpDecision decision = server_.OnUdpDatagram(Header(0x63, 0, 0), kUnicast, now_);

@@ -45,7 +45,7 @@ TEST(CipEncapsulationHeader, EncodeIsTheInverseOfDecode) {
   header.sender_context = {8, 7, 6, 5, 4, 3, 2, 1};
   header.options = 0;
   std::array<std::uint8_t, 24> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeEncapsulationHeader(header, out);
   ASSERT_TRUE(out.ok());
   EXPECT_EQ(Of(out.written()), Hex("65 00 04 00 EF BE AD DE 69 00 00 00 08 07 06 05 04 03 02 01 00 00 00 00"));
@@ -86,7 +86,7 @@ IdentityItem SampleIdentity() {
 
 TEST(CipDiscoveryReply, ListIdentityItemLayout) {
   std::array<std::uint8_t, 64> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeListIdentityData(SampleIdentity(), out);
   ASSERT_TRUE(out.ok());
   EXPECT_EQ(Of(out.written()), Hex("01 00 | 0C 00 28 00 | 01 00 | 00 02 AF 12 0A 00 02 0F 00 00 00 00 00 00 00 00"
@@ -96,7 +96,7 @@ TEST(CipDiscoveryReply, ListIdentityItemLayout) {
 
 TEST(CipDiscoveryReply, ListServicesCommunicationsItem) {
   std::array<std::uint8_t, 32> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeListServicesData(out);
   ASSERT_TRUE(out.ok());
   EXPECT_EQ(Of(out.written()), Hex("01 00 | 00 01 14 00 | 01 00 | 20 01 |"
@@ -105,7 +105,7 @@ TEST(CipDiscoveryReply, ListServicesCommunicationsItem) {
 
 TEST(CipDiscoveryReply, ListInterfacesHasNoItems) {
   std::array<std::uint8_t, 4> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeListInterfacesData(out);
   EXPECT_EQ(Of(out.written()), Hex("00 00"));
 }
@@ -197,9 +197,9 @@ TEST(CipCpf, SendDataPrefixIsSkipped) {
 
 TEST(CipCpf, ItemEncoding) {
   std::array<std::uint8_t, 32> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   const std::size_t at = BeginCpfItem(out, CpfItemType::kUnconnectedData);
-  out.U16(0x038E);
+  out.U16Le(0x038E);
   FinishCpfItem(out, at);
   EncodeSockaddrItem(out, CpfItemType::kSockaddrTtoO, SocketAddress{2, 2222, 0xEFC00120});
   ASSERT_TRUE(out.ok());

@@ -143,14 +143,14 @@ TEST(CipEpath, ElectronicKeyDataAndSymbolSegments) {
 
 TEST(CipEpath, EncodersUseTheSmallestFormat) {
   std::array<std::uint8_t, 32> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeLogicalSegment(SegmentKind::kClass, 0xF6, out);
   EncodeLogicalSegment(SegmentKind::kInstance, 0x1234, out);
   EncodeLogicalSegment(SegmentKind::kAttribute, 0x12345, out);
   ASSERT_TRUE(out.ok());
   EXPECT_EQ(Of(out.written()), Hex("20 F6 | 25 00 34 12 | 32 00 45 23 01 00"));
 
-  ByteWriter port(buffer);
+  base::ByteWriter port(buffer);
   const std::string_view ip = "10.0.2.15";
   EncodePortSegment(2, std::span(reinterpret_cast<const std::uint8_t*>(ip.data()), ip.size()), port);
   EncodePortSegment(1, Hex("00"), port);
@@ -161,7 +161,7 @@ TEST(CipEpath, EncodersUseTheSmallestFormat) {
 TEST(CipEpath, EncodedPathsDecodeToTheSameValues) {
   for (std::uint32_t value : {0U, 1U, 0xFFU, 0x100U, 0xFFFFU, 0x10000U, 0xFFFFFFFFU}) {
     std::array<std::uint8_t, 32> buffer{};
-    ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     // Class and attribute IDs are 16-bit (their 32-bit format is reserved); instances and members are not.
     const std::uint32_t attribute = value & 0xFFFFU;
     EncodeLogicalSegment(SegmentKind::kClass, 0x04, out);

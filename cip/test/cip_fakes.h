@@ -14,11 +14,11 @@ namespace cip::test {
 
 class FakeDeviceInfo final : public DeviceInfoProvider {
  public:
-  MacAddress Mac() const override { return mac; }
+  base::MacAddress Mac() const override { return mac; }
   DriveModel Model() const override { return model; }
   DeviceStatus Status() const override { return status; }
 
-  MacAddress mac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};  // the manual's example MAC (§10.1)
+  base::MacAddress mac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};  // the manual's example MAC (§10.1)
   DriveModel model = DriveModel::kVfMb1;
   DeviceStatus status;
 };

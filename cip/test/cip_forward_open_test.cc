@@ -69,7 +69,7 @@ TEST(CipForwardOpenTest, DecodesLargeForwardOpenWith32BitParameters) {
 TEST(CipForwardOpenTest, EncodeDecodeRoundTrip) {
   const Decoded<ForwardOpenRequest> decoded = DecodeForwardOpen(kForwardOpen, false);
   std::array<std::uint8_t, 128> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeForwardOpen(decoded.request, out);
   ASSERT_TRUE(out.ok());
   EXPECT_EQ(Of(out.written()), kForwardOpen);
@@ -77,7 +77,7 @@ TEST(CipForwardOpenTest, EncodeDecodeRoundTrip) {
   ForwardOpenRequest large = decoded.request;
   large.large = true;
   large.t_to_o.size = 600;
-  ByteWriter large_out(buffer);
+  base::ByteWriter large_out(buffer);
   EncodeForwardOpen(large, large_out);
   const Decoded<ForwardOpenRequest> again = DecodeForwardOpen(large_out.written(), true);
   ASSERT_EQ(again.framing, RequestFraming::kOk);
@@ -108,7 +108,7 @@ TEST(CipForwardOpenTest, DecodesForwardClose) {
   EXPECT_EQ(decoded.request.triad, (ConnectionTriad{0x1337, 0x3333, 0x12345678}));
   EXPECT_EQ(decoded.request.connection_path.size(), 8U);
   std::array<std::uint8_t, 64> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeForwardClose(decoded.request, out);
   EXPECT_EQ(Of(out.written()), close);
 
@@ -247,11 +247,11 @@ TEST(CipForwardOpenTest, ElectronicKey) {
 
 TEST(CipForwardOpenTest, SuccessReplies) {
   std::array<std::uint8_t, 64> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeForwardOpenSuccess({0x11223344, 0x20000001, {0x1337, 0x3333, 0x12345678}, 10000, 2000}, out);
   EXPECT_EQ(Of(out.written()),
             Hex("44 33 22 11 | 01 00 00 20 | 37 13 33 33 78 56 34 12 | 10 27 00 00 | D0 07 00 00 | 00 00"));
-  ByteWriter close(buffer);
+  base::ByteWriter close(buffer);
   EncodeForwardCloseSuccess({0x1337, 0x3333, 0x12345678}, close);
   EXPECT_EQ(Of(close.written()), Hex("37 13 33 33 78 56 34 12 00 00"));
 }
@@ -260,7 +260,7 @@ TEST(CipForwardOpenTest, FailureReplies) {
   const ConnectionTriad triad{0x1337, 0x3333, 0x12345678};
   std::array<std::uint8_t, 64> buffer{};
   {
-    ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     const ServiceStatus status =
         EncodeConnectionFailure(ConnectionFailure::Extended(kExtendedOwnershipConflict), triad, out);
     EXPECT_EQ(status.general, GeneralStatus::kConnectionFailure);
@@ -269,14 +269,14 @@ TEST(CipForwardOpenTest, FailureReplies) {
     EXPECT_EQ(Of(out.written()), Hex("06 01 | 37 13 33 33 78 56 34 12 | 00 00"));
   }
   {
-    ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     const ServiceStatus status =
         EncodeConnectionFailure(ConnectionFailure::WithSize(kExtendedOtoTSize, 14), triad, out);
     EXPECT_EQ(status.additional_words_in_data, 2);
     EXPECT_EQ(Of(out.written()), Hex("27 01 0E 00 | 37 13 33 33 78 56 34 12 | 00 00"));
   }
   {
-    ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     const ServiceStatus status = EncodeConnectionFailure(
         ConnectionFailure::WithRpi(kExtendedRpiNotSupported, kRpiMinimumAcceptable, 1000, kRpiAcceptable, 10000), triad,
         out);
@@ -284,14 +284,14 @@ TEST(CipForwardOpenTest, FailureReplies) {
     EXPECT_EQ(Of(out.written()), Hex("11 01 | 02 00 | E8 03 00 00 | 10 27 00 00 | 37 13 33 33 78 56 34 12 | 00 00"));
   }
   {
-    ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     ConnectionFailure segment = ConnectionFailure::Extended(kExtendedInvalidRouteSegment);
     segment.remaining_path_words = 4;
     EncodeConnectionFailure(segment, triad, out);
     EXPECT_EQ(Of(out.written()), Hex("15 03 | 37 13 33 33 78 56 34 12 | 04 00"));
   }
   {
-    ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     const ServiceStatus status =
         EncodeConnectionFailure(ConnectionFailure::General(GeneralStatus::kNotEnoughData), triad, out);
     EXPECT_EQ(status.general, GeneralStatus::kNotEnoughData);
@@ -302,7 +302,7 @@ TEST(CipForwardOpenTest, FailureReplies) {
 
 TEST(CipForwardOpenTest, IoDatagramCodecAndSequenceArithmetic) {
   std::array<std::uint8_t, 64> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeIoDatagram(0x11223344, 7, 0x0102, Hex("01 00 00 00 AA BB"), out);
   EXPECT_EQ(Of(out.written()),
             Hex("02 00 | 02 80 08 00 44 33 22 11 07 00 00 00 | B1 00 08 00 02 01 01 00 00 00 AA BB"));

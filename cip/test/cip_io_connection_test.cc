@@ -25,7 +25,7 @@ constexpr hal::Micros kTimeout = kRpi * 4 * 2;  // multiplier 1
 class CipIoConnectionTest : public ::testing::Test {
  protected:
   void Feed(std::uint32_t encapsulation_sequence, std::uint16_t sequence, bool run, const Bytes& data,
-            std::uint32_t id = kOtoT, std::uint32_t from = test::kOriginator) {
+            std::uint32_t id = kOtoT, base::Ipv4Address from = test::kOriginator) {
     card_.cm.OnIoDatagram(IoDatagramBytes(id, encapsulation_sequence, sequence, run, data), Ipv4Endpoint{from, 2222},
                           card_.now);
   }
@@ -79,7 +79,7 @@ TEST_F(CipIoConnectionTest, SequenceCountsWrap) {
 TEST_F(CipIoConnectionTest, DropsStrangersStalePacketsAndWrongSizes) {
   ASSERT_EQ(card_.Open()[2], 0x00);
   Feed(5, 1, true, kOutput, kOtoT + 1);          // unknown connection
-  Feed(5, 1, true, kOutput, kOtoT, 0x0A000299);  // another host
+  Feed(5, 1, true, kOutput, kOtoT, base::Ipv4Address(0x0A000299));  // another host
   Feed(5, 1, true, Hex("01 02 03"));             // wrong size
   card_.cm.OnIoDatagram(Hex("02 00 02 80 08 00 44 33"), Ipv4Endpoint{test::kOriginator, 2222}, card_.now);  // cut
   EXPECT_TRUE(card_.io.consumed.empty());
@@ -223,7 +223,7 @@ TEST_F(CipIoConnectionTest, ProducesToTheRequestedPortAndToMulticast) {
   input.path = Hex("20 04 24 01 2C C7 2C 97");
   ASSERT_EQ(card_.Open(input)[2], 0x00);
   EXPECT_EQ(card_.Take(), Hex("02 00 | 02 80 08 00 46 35 24 13 01 00 00 00 | B1 00 06 00 01 00 97 98 99 9A"));
-  EXPECT_EQ(card_.last_to, (Ipv4Endpoint{0xEFC00120, 2222}));
+  EXPECT_EQ(card_.last_to, (Ipv4Endpoint{base::Ipv4Address(0xEFC00120), 2222}));
   EXPECT_TRUE(card_.Take().empty());
 }
 

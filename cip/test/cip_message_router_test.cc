@@ -38,12 +38,12 @@ class TestObject final : public AttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 2; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t) const override { return kTestAttributes; }
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override {
-    if (id == 1) out.U16(static_cast<std::uint16_t>(0x1234 + instance - 1));
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override {
+    if (id == 1) out.U16Le(static_cast<std::uint16_t>(0x1234 + instance - 1));
     if (id == 2) out.U8(setting);
-    if (id == 3) out.U32(0xA1B2C3D4);
+    if (id == 3) out.U32Le(0xA1B2C3D4);
   }
-  ServiceStatus SetInstanceAttribute(std::uint32_t, std::uint16_t, ByteReader& value) override {
+  ServiceStatus SetInstanceAttribute(std::uint32_t, std::uint16_t, base::ByteReader& value) override {
     std::uint8_t requested = 0;
     const ServiceStatus status = ReadExactU8(value, requested);
     if (!status.ok()) return status;
@@ -51,7 +51,7 @@ class TestObject final : public AttributeHandler {
     setting = requested;
     return Success();
   }
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override {
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override {
     reply.Bytes(request.data);
     return Success();
   }
@@ -82,7 +82,7 @@ TEST_F(CipMessageRouterTest, RequestAndReplyCodecs) {
   EXPECT_EQ(Of(request->path), Hex("20 70 24 01 30 02"));
   EXPECT_EQ(Of(request->data), Hex("05"));
   std::array<std::uint8_t, 16> buffer{};
-  ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   EncodeMessageRouterRequest(*request, out);
   EXPECT_EQ(Of(out.written()), bytes);
 

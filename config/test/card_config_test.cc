@@ -124,7 +124,7 @@ TEST(CardConfigTest, FactorySettingsParseToTheDefaultsWithoutProblems) {
   EXPECT_EQ(c.protocol, Protocol::kModbusTcp);
   EXPECT_EQ(c.rate_setting, 0);
   EXPECT_EQ(c.ip_mode, IpMode::kManual);
-  EXPECT_EQ(c.ip, (std::array<std::uint8_t, 4>{0, 0, 0, 0}));
+  EXPECT_EQ(c.ip, (base::Ipv4Address{0, 0, 0, 0}));
   EXPECT_EQ(c.timeout_tenths, 20);
   EXPECT_TRUE(c.web_server);
   EXPECT_FALSE(c.io_scanning);
@@ -193,7 +193,7 @@ TEST(CardConfigTest, OutOfRangeValuesAreReportedAndReplacedByTheFactoryDefault) 
   EXPECT_EQ(ParseWith({{0xC101, 6}}).config.loss_action, 4);
   EXPECT_EQ(ParseWith({{0xC500, 2}}).config.protocol, Protocol::kModbusTcp);
   EXPECT_EQ(ParseWith({{0xC504, 3}}).config.ip_mode, IpMode::kManual);
-  EXPECT_EQ(ParseWith({{0xC505, 256}}).config.ip[0], 0);
+  EXPECT_EQ(ParseWith({{0xC505, 256}}).config.ip.octets()[0], 0);
   EXPECT_EQ(ParseWith({{0xC523, 601}}).config.timeout_tenths, 20);
   EXPECT_TRUE(ParseWith({{0xC554, 2}}).config.web_server);
   EXPECT_EQ(ParseWith({{0x0856, 0}}).config.pole_pairs, 2);
@@ -223,11 +223,11 @@ TEST(CardConfigTest, AddressesAndFlagsAreTaken) {
   EXPECT_EQ(c.protocol, Protocol::kEtherNetIp);
   EXPECT_EQ(c.rate_setting, 3);
   EXPECT_EQ(c.ip_mode, IpMode::kDhcp);
-  EXPECT_EQ(c.ip, (std::array<std::uint8_t, 4>{192, 168, 1, 12}));
-  EXPECT_EQ(c.netmask, (std::array<std::uint8_t, 4>{255, 255, 255, 0}));
-  EXPECT_EQ(c.gateway, (std::array<std::uint8_t, 4>{192, 0, 0, 254}));
+  EXPECT_EQ(c.ip, (base::Ipv4Address{192, 168, 1, 12}));
+  EXPECT_EQ(c.netmask, (base::Ipv4Address{255, 255, 255, 0}));
+  EXPECT_EQ(c.gateway, (base::Ipv4Address{192, 0, 0, 254}));
   EXPECT_FALSE(c.web_server);
-  EXPECT_EQ(c.modbus_master, (std::array<std::uint8_t, 4>{192, 0, 0, 30}));
+  EXPECT_EQ(c.modbus_master, (base::Ipv4Address{192, 0, 0, 30}));
   EXPECT_TRUE(c.io_scanning);
   EXPECT_EQ(c.cmod, 4);
   EXPECT_EQ(c.fmod, 7);

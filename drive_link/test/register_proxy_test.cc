@@ -492,7 +492,7 @@ TEST_F(RegisterProxyTest, WritesBackWhatTheCardOwnsWhenItChanges) {
   EXPECT_EQ(Reg(0xC502), 3);
   EXPECT_EQ(Reg(0xC503), 0);
   const std::array<std::uint16_t, 6> mac_numbers = {0xC517, 0xC518, 0xC519, 0xC520, 0xC521, 0xC522};
-  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(Reg(mac_numbers[i]), status.mac[i]) << i;
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(Reg(mac_numbers[i]), status.mac.octets()[i]) << i;
   const std::array<std::uint16_t, 12> address_numbers = {0xC524, 0xC525, 0xC526, 0xC527, 0xC528, 0xC529,
                                                          0xC530, 0xC531, 0xC532, 0xC533, 0xC534, 0xC535};
   const std::array<std::uint16_t, 12> address_values = {192, 168, 1, 12, 255, 255, 255, 0, 192, 168, 1, 1};
@@ -505,7 +505,7 @@ TEST_F(RegisterProxyTest, WritesBackWhatTheCardOwnsWhenItChanges) {
   proxy_->SetCardStatus(status);  // unchanged: nothing is written
   RunFor(kSecond);
   EXPECT_EQ(proxy_->counters().owned_writes, writes);
-  status.ip[3] = 13;
+  status.ip = base::Ipv4Address(192, 168, 1, 13);
   proxy_->SetCardStatus(status);
   RunFor(200 * kMilli);
   EXPECT_EQ(Reg(0xC527), 13);

@@ -139,42 +139,42 @@ FrameFault ReadReplyFields(const AsciiParts& parts, DecodedReply& decoded) {
 }
 
 // Writes the inverter number; false if this frame cannot carry it.
-bool PutAddress(FrameWriter& writer, InverterAddress address, bool wildcards_allowed) {
+bool PutAddress(base::ByteWriter& writer, InverterAddress address, bool wildcards_allowed) {
   const auto digit = [](std::uint8_t d) { return static_cast<std::uint8_t>('0' + d); };
   switch (address.kind) {
     case InverterAddress::Kind::kOmitted:
       return true;
     case InverterAddress::Kind::kNumber:
       if (address.value > kMaxAsciiInverterNumber) return false;
-      writer.Put(digit(address.value / 10));
-      writer.Put(digit(address.value % 10));
+      writer.U8(digit(address.value / 10));
+      writer.U8(digit(address.value % 10));
       return true;
     case InverterAddress::Kind::kBroadcast:
-      writer.Put('*');
-      writer.Put('*');
+      writer.U8('*');
+      writer.U8('*');
       return wildcards_allowed;
     case InverterAddress::Kind::kOnesDigitGroup:
-      writer.Put('*');
-      writer.Put(digit(address.value));
+      writer.U8('*');
+      writer.U8(digit(address.value));
       return wildcards_allowed && address.value <= 9;
     case InverterAddress::Kind::kTensDigitGroup:
-      writer.Put(digit(address.value));
-      writer.Put('*');
+      writer.U8(digit(address.value));
+      writer.U8('*');
       return wildcards_allowed && address.value <= 9;
   }
   return false;
 }
 
 // "&" SUM and ")" as the envelope asks, then CR.
-base::Result<std::size_t> FinishFrame(FrameWriter& writer, const Envelope& envelope) {
+base::Result<std::size_t> FinishFrame(base::ByteWriter& writer, const Envelope& envelope) {
   if (envelope.ascii_checksum) {
-    writer.Put(kAsciiChecksumMark);
+    writer.U8(kAsciiChecksumMark);
     const std::array<std::uint8_t, 2> sum = AsciiChecksum(writer.written());
-    writer.Put(sum[0]);
-    writer.Put(sum[1]);
+    writer.U8(sum[0]);
+    writer.U8(sum[1]);
   }
-  if (envelope.ascii_stop_code) writer.Put(kAsciiStopCode);
-  writer.Put(kCarriageReturn);
+  if (envelope.ascii_stop_code) writer.U8(kAsciiStopCode);
+  writer.U8(kCarriageReturn);
   return writer.Finish();
 }
 
@@ -214,35 +214,35 @@ base::Result<std::size_t> EncodeAsciiRequest(const Request& request, std::span<s
   if (request.command == Command::kReadTwoWire) return base::InvalidArgument();  // binary only
   if (request.command == Command::kRead && request.data != 0) return base::InvalidArgument();
   if (writes && !DataFitsDigits(request.data, request.ascii_data_digits)) return base::InvalidArgument();
-  FrameWriter writer(out);
-  writer.Put(kAsciiStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kAsciiStartCode);
   if (!PutAddress(writer, request.envelope.address, /*wildcards_allowed=*/true)) {
     return base::InvalidArgument();
   }
-  writer.Put(static_cast<std::uint8_t>(request.command));
-  writer.PutHex(request.comm_number, kFieldLength);
-  if (writes) writer.PutHex(request.data, request.ascii_data_digits);
+  writer.U8(static_cast<std::uint8_t>(request.command));
+  PutHex(writer, request.comm_number, kFieldLength);
+  if (writes) PutHex(writer, request.data, request.ascii_data_digits);
   return FinishFrame(writer, request.envelope);
 }
 
 base::Result<std::size_t> EncodeAsciiReply(const Reply& reply, std::span<std::uint8_t> out) {
   if (reply.command == Command::kReadTwoWire) return base::InvalidArgument();  // binary only
-  FrameWriter writer(out);
-  writer.Put(kAsciiStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kAsciiStartCode);
   if (!PutAddress(writer, reply.envelope.address, /*wildcards_allowed=*/false)) return base::InvalidArgument();
-  writer.Put(WriteReplyLetter(static_cast<std::uint8_t>(reply.command), reply.tripped));
-  writer.PutHex(reply.comm_number, kFieldLength);
-  writer.PutHex(reply.data, kMaxDataDigits);
+  writer.U8(WriteReplyLetter(static_cast<std::uint8_t>(reply.command), reply.tripped));
+  PutHex(writer, reply.comm_number, kFieldLength);
+  PutHex(writer, reply.data, kMaxDataDigits);
   return FinishFrame(writer, reply.envelope);
 }
 
 base::Result<std::size_t> EncodeAsciiErrorReply(const ErrorReply& reply, std::span<std::uint8_t> out) {
   if (reply.code > ErrorCode::kChecksumError) return base::InvalidArgument();
-  FrameWriter writer(out);
-  writer.Put(kAsciiStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kAsciiStartCode);
   if (!PutAddress(writer, reply.envelope.address, /*wildcards_allowed=*/false)) return base::InvalidArgument();
-  writer.Put(WriteReplyLetter(kErrorReplyLetter, reply.tripped));
-  writer.PutHex(static_cast<std::uint16_t>(reply.code), kFieldLength);
+  writer.U8(WriteReplyLetter(kErrorReplyLetter, reply.tripped));
+  PutHex(writer, static_cast<std::uint16_t>(reply.code), kFieldLength);
   return FinishFrame(writer, reply.envelope);
 }
 

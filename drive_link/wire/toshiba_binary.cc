@@ -6,6 +6,7 @@
 // it); SUM is the low byte of the sum of everything before it. Words are big-endian.
 #include <array>
 
+#include "base/byte_reader.h"
 #include "drive_link/wire/toshiba_frame.h"
 #include "toshiba_internal.h"
 
@@ -36,10 +37,6 @@ struct BinaryParts {
   std::span<const std::uint8_t> body;  // between the command and the checksum
   bool checksum_ok = false;
 };
-
-std::uint16_t WordAt(std::span<const std::uint8_t> bytes, std::size_t offset) {
-  return static_cast<std::uint16_t>((bytes[offset] << 8) | bytes[offset + 1]);
-}
 
 FrameFault ReadAddress(Cursor& cursor, Direction direction, InverterAddress& address) {
   const std::optional<std::uint8_t> next = cursor.Peek();
@@ -92,9 +89,11 @@ FrameFault SplitBinaryFrame(std::span<const std::uint8_t> frame, Direction direc
   return FrameFault::kNone;
 }
 
+// The body's length was proven against the command by SplitBinaryFrame; reading it through a bounded
+// reader all the same means a wrong proof yields zeros, never bytes past the frame.
 template <std::size_t N>
-void ReadWords(std::span<const std::uint8_t> bytes, std::size_t count, std::array<std::uint16_t, N>& words) {
-  for (std::size_t i = 0; i < count && i < N; ++i) words[i] = WordAt(bytes, 2 * i);
+void ReadWords(base::ByteReader& body, std::size_t count, std::array<std::uint16_t, N>& words) {
+  for (std::size_t i = 0; i < count && i < N; ++i) words[i] = body.U16Be();
 }
 
 DecodedRequest DecodeBlockRequest(const BinaryParts& parts) {
@@ -106,9 +105,10 @@ DecodedRequest DecodeBlockRequest(const BinaryParts& parts) {
     decoded.fault = FrameFault::kBadChecksum;
     return decoded;
   }
-  block.write_count = parts.body[0];
-  block.read_count = parts.body[1];
-  ReadWords(parts.body.subspan(2), block.write_count, block.write_data);
+  base::ByteReader body(parts.body);
+  block.write_count = body.U8();
+  block.read_count = body.U8();
+  ReadWords(body, block.write_count, block.write_data);
   return decoded;
 }
 
@@ -122,9 +122,10 @@ DecodedReply DecodeBlockReply(const BinaryParts& parts, bool tripped) {
     decoded.fault = FrameFault::kBadChecksum;
     return decoded;
   }
-  block.read_count = parts.body[0];
-  block.write_status = parts.body[1];
-  ReadWords(parts.body.subspan(2), block.read_count, block.read_data);
+  base::ByteReader body(parts.body);
+  block.read_count = body.U8();
+  block.write_status = body.U8();
+  ReadWords(body, block.read_count, block.read_data);
   return decoded;
 }
 
@@ -133,7 +134,8 @@ DecodedReply DecodeErrorReply(const BinaryParts& parts, bool tripped) {
   decoded.kind = ReplyKind::kError;
   decoded.error.envelope = {.mode = Mode::kBinary, .address = parts.address};
   decoded.error.tripped = tripped;
-  const std::uint16_t code = WordAt(parts.body, 0);
+  base::ByteReader body(parts.body);
+  const std::uint16_t code = body.U16Be();
   if (!parts.checksum_ok) {
     decoded.fault = FrameFault::kBadChecksum;
   } else if (code > static_cast<std::uint16_t>(ErrorCode::kChecksumError)) {
@@ -145,15 +147,15 @@ DecodedReply DecodeErrorReply(const BinaryParts& parts, bool tripped) {
 }
 
 // Writes the inverter number; false if this frame cannot carry it (FFh only addresses requests).
-bool PutAddress(FrameWriter& writer, InverterAddress address, bool broadcast_allowed) {
+bool PutAddress(base::ByteWriter& writer, InverterAddress address, bool broadcast_allowed) {
   switch (address.kind) {
     case InverterAddress::Kind::kOmitted:
       return true;
     case InverterAddress::Kind::kNumber:
-      writer.Put(address.value);
+      writer.U8(address.value);
       return address.value <= kMaxBinaryInverterNumber;
     case InverterAddress::Kind::kBroadcast:
-      writer.Put(kBinaryBroadcast);
+      writer.U8(kBinaryBroadcast);
       return broadcast_allowed;
     case InverterAddress::Kind::kOnesDigitGroup:
     case InverterAddress::Kind::kTensDigitGroup:
@@ -162,8 +164,8 @@ bool PutAddress(FrameWriter& writer, InverterAddress address, bool broadcast_all
   return false;
 }
 
-base::Result<std::size_t> FinishFrame(FrameWriter& writer) {
-  writer.Put(BinaryChecksum(writer.written()));
+base::Result<std::size_t> FinishFrame(base::ByteWriter& writer) {
+  writer.U8(BinaryChecksum(writer.written()));
   return writer.Finish();
 }
 
@@ -199,8 +201,9 @@ DecodedRequest DecodeBinaryRequest(std::span<const std::uint8_t> frame, BlockWri
   }
   Request& request = decoded.request;
   request.command = static_cast<Command>(parts.command);
-  request.comm_number = WordAt(parts.body, 0);
-  if (request.command != Command::kRead) request.data = WordAt(parts.body, 2);
+  base::ByteReader body(parts.body);
+  request.comm_number = body.U16Be();
+  if (request.command != Command::kRead) request.data = body.U16Be();
   return decoded;
 }
 
@@ -220,41 +223,42 @@ DecodedReply DecodeBinaryReply(std::span<const std::uint8_t> frame) {
     return decoded;
   }
   reply.command = static_cast<Command>(letter.upper);
-  reply.comm_number = WordAt(parts.body, 0);
-  reply.data = WordAt(parts.body, 2);
+  base::ByteReader body(parts.body);
+  reply.comm_number = body.U16Be();
+  reply.data = body.U16Be();
   return decoded;
 }
 
 base::Result<std::size_t> EncodeBinaryRequest(const Request& request, std::span<std::uint8_t> out) {
   if (!IsRegisterCommand(static_cast<std::uint8_t>(request.command))) return base::InvalidArgument();
   if (request.command == Command::kRead && request.data != 0) return base::InvalidArgument();
-  FrameWriter writer(out);
-  writer.Put(kBinaryStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kBinaryStartCode);
   if (!PutAddress(writer, request.envelope.address, /*broadcast_allowed=*/true)) return base::InvalidArgument();
-  writer.Put(static_cast<std::uint8_t>(request.command));
-  writer.PutWord(request.comm_number);
-  if (request.command != Command::kRead) writer.PutWord(request.data);
+  writer.U8(static_cast<std::uint8_t>(request.command));
+  writer.U16Be(request.comm_number);
+  if (request.command != Command::kRead) writer.U16Be(request.data);
   return FinishFrame(writer);
 }
 
 base::Result<std::size_t> EncodeBinaryReply(const Reply& reply, std::span<std::uint8_t> out) {
   if (!IsRegisterCommand(static_cast<std::uint8_t>(reply.command))) return base::InvalidArgument();
-  FrameWriter writer(out);
-  writer.Put(kBinaryStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kBinaryStartCode);
   if (!PutAddress(writer, reply.envelope.address, /*broadcast_allowed=*/false)) return base::InvalidArgument();
-  writer.Put(WriteReplyLetter(static_cast<std::uint8_t>(reply.command), reply.tripped));
-  writer.PutWord(reply.comm_number);
-  writer.PutWord(reply.data);
+  writer.U8(WriteReplyLetter(static_cast<std::uint8_t>(reply.command), reply.tripped));
+  writer.U16Be(reply.comm_number);
+  writer.U16Be(reply.data);
   return FinishFrame(writer);
 }
 
 base::Result<std::size_t> EncodeBinaryErrorReply(const ErrorReply& reply, std::span<std::uint8_t> out) {
   if (reply.code > ErrorCode::kChecksumError) return base::InvalidArgument();
-  FrameWriter writer(out);
-  writer.Put(kBinaryStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kBinaryStartCode);
   if (!PutAddress(writer, reply.envelope.address, /*broadcast_allowed=*/false)) return base::InvalidArgument();
-  writer.Put(WriteReplyLetter(kErrorReplyLetter, reply.tripped));
-  writer.PutWord(static_cast<std::uint16_t>(reply.code));
+  writer.U8(WriteReplyLetter(kErrorReplyLetter, reply.tripped));
+  writer.U16Be(static_cast<std::uint16_t>(reply.code));
   return FinishFrame(writer);
 }
 
@@ -264,25 +268,25 @@ namespace drive_link::wire {
 
 base::Result<std::size_t> EncodeBlockRequest(const BlockRequest& request, std::span<std::uint8_t> out) {
   if (request.write_count > kMaxLedBlockWrites) return base::InvalidArgument();
-  internal::FrameWriter writer(out);
-  writer.Put(kBinaryStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kBinaryStartCode);
   if (!internal::PutAddress(writer, request.address, /*broadcast_allowed=*/true)) return base::InvalidArgument();
-  writer.Put(kBlockRequestLetter);
-  writer.Put(request.write_count);
-  writer.Put(request.read_count);
-  for (std::size_t i = 0; i < request.write_count; ++i) writer.PutWord(request.write_data[i]);
+  writer.U8(kBlockRequestLetter);
+  writer.U8(request.write_count);
+  writer.U8(request.read_count);
+  for (std::size_t i = 0; i < request.write_count; ++i) writer.U16Be(request.write_data[i]);
   return internal::FinishFrame(writer);
 }
 
 base::Result<std::size_t> EncodeBlockReply(const BlockReply& reply, std::span<std::uint8_t> out) {
   if (reply.read_count > kMaxBlockReads) return base::InvalidArgument();
-  internal::FrameWriter writer(out);
-  writer.Put(kBinaryStartCode);
+  base::ByteWriter writer(out);
+  writer.U8(kBinaryStartCode);
   if (!internal::PutAddress(writer, reply.address, /*broadcast_allowed=*/false)) return base::InvalidArgument();
-  writer.Put(internal::WriteReplyLetter(kBlockReplyLetter, reply.tripped));
-  writer.Put(reply.read_count);
-  writer.Put(reply.write_status);
-  for (std::size_t i = 0; i < reply.read_count; ++i) writer.PutWord(reply.read_data[i]);
+  writer.U8(internal::WriteReplyLetter(kBlockReplyLetter, reply.tripped));
+  writer.U8(reply.read_count);
+  writer.U8(reply.write_status);
+  for (std::size_t i = 0; i < reply.read_count; ++i) writer.U16Be(reply.read_data[i]);
   return internal::FinishFrame(writer);
 }
 

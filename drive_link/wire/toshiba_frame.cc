@@ -168,8 +168,8 @@ base::Result<std::size_t> EncodeErrorReply(const ErrorReply& reply, std::span<st
 
 namespace internal {
 
-void FrameWriter::PutHex(std::uint16_t value, std::size_t digits) {
-  for (std::size_t i = digits; i > 0; --i) Put(HexCharacter((value >> (4 * (i - 1))) & 0x0FU));
+void PutHex(base::ByteWriter& writer, std::uint16_t value, std::size_t digits) {
+  for (std::size_t i = digits; i > 0; --i) writer.U8(HexCharacter((value >> (4 * (i - 1))) & 0x0FU));
 }
 
 std::optional<std::uint16_t> ParseHex(std::span<const std::uint8_t> digits) {

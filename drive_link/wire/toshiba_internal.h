@@ -1,5 +1,6 @@
-// Private to ipe_toshiba_wire: the bounded reader and writer every frame goes through, hex helpers, and
-// the per-mode codecs behind the public dispatchers in toshiba_frame.h.
+// Private to ipe_toshiba_wire: the cursor the decoders split a frame with, hex helpers, and the per-mode
+// codecs behind the public dispatchers in toshiba_frame.h. Frames are written with base::ByteWriter
+// (words big-endian, high byte first, p.11).
 #pragma once
 
 #include <cstddef>
@@ -7,6 +8,7 @@
 #include <optional>
 #include <span>
 
+#include "base/byte_writer.h"
 #include "base/status.h"
 #include "drive_link/wire/toshiba_frame.h"
 
@@ -55,36 +57,8 @@ class Cursor {
   std::size_t position_ = 0;
 };
 
-// Appends to a caller's span and never writes past it. Overflow is sticky and checked once, at Finish.
-class FrameWriter {
- public:
-  explicit FrameWriter(std::span<std::uint8_t> out) : out_(out) {}
-
-  void Put(std::uint8_t byte) {
-    if (length_ < out_.size()) {
-      out_[length_++] = byte;
-    } else {
-      overflow_ = true;
-    }
-  }
-  // Big-endian, as every binary word of the protocol is sent (high byte first, p.11).
-  void PutWord(std::uint16_t word) {
-    Put(static_cast<std::uint8_t>(word >> 8));
-    Put(static_cast<std::uint8_t>(word & 0xFFU));
-  }
-  // The low `digits` hex digits of `value`, most significant first, uppercase as in every example.
-  void PutHex(std::uint16_t value, std::size_t digits);
-  std::span<const std::uint8_t> written() const { return out_.first(length_); }
-  base::Result<std::size_t> Finish() const {
-    if (overflow_) return base::ResourceExhausted();
-    return length_;
-  }
-
- private:
-  std::span<std::uint8_t> out_;
-  std::size_t length_ = 0;
-  bool overflow_ = false;
-};
+// The low `digits` hex digits of `value`, most significant first, uppercase as in every example.
+void PutHex(base::ByteWriter& writer, std::uint16_t value, std::size_t digits);
 
 constexpr bool IsDecimalDigit(std::uint8_t c) { return c >= '0' && c <= '9'; }
 constexpr bool IsHexDigit(std::uint8_t c) {

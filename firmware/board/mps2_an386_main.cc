@@ -142,7 +142,7 @@ int main() {
 
   static hal::mps2::BoardRandom random;
   const hal::mps2::RandomSeeding seeding = random.Seed(store, firmware::kNvRandomSeed, clock);
-  const hal::MacAddress mac = firmware::LoadOrCreateMac(store, random);
+  const base::MacAddress mac = firmware::LoadOrCreateMac(store, random);
   random.Mix(mac);
   {
     hal::TextLine line;

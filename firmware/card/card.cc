@@ -161,7 +161,7 @@ CardReadiness Card::Readiness() const {
 bool Card::TakeAddressChange() {
   const Ipv4Config now = addressing_.active();
   if (address_announced_ && now == announced_) return false;
-  if (!address_announced_ && now.address == 0) return false;
+  if (!address_announced_ && now.address.IsUnspecified()) return false;
   address_announced_ = true;
   announced_ = now;
   return true;

@@ -117,7 +117,7 @@ class Card {
   // True once per change of the address in use (after the first address), for an "address" line.
   bool TakeAddressChange();
 
-  hal::MacAddress mac() const { return port_.Mac(); }
+  base::MacAddress mac() const { return port_.Mac(); }
   hal::ResetControl& reset_control() { return reset_; }
   // False when the default web passwords could not be written at start (they are in force anyway).
   bool passwords_stored() const { return passwords_stored_; }

@@ -19,7 +19,8 @@ const char* ModeName(config::IpMode mode) {
   return "?";
 }
 
-unsigned PrefixLength(std::uint32_t mask) {
+unsigned PrefixLength(base::Ipv4Address netmask) {
+  std::uint32_t mask = netmask.HostOrder();
   unsigned bits = 0;
   while ((mask & 0x80000000U) != 0) {
     ++bits;
@@ -45,7 +46,7 @@ void DescribeIdentity(const Card& card, TextLine& line) {
   line.Text("ip=").Ipv4(card.addressing().active().address).Text(" mac=").Mac(card.mac());
 }
 
-void DescribeEndpoints(std::uint32_t address, TextLine& line) {
+void DescribeEndpoints(base::Ipv4Address address, TextLine& line) {
   static constexpr struct {
     const char* name;
     unsigned port;

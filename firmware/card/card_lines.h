@@ -19,6 +19,6 @@ void DescribeAddress(const CardAddressing& addressing, TextLine& line);
 // "ip=A.B.C.D mac=aa:bb:cc:dd:ee:ff": the start of the ready line.
 void DescribeIdentity(const Card& card, TextLine& line);
 // "modbus=A:502 enip=A:44818 enip-udp=A:44818 io=A:2222 http=A:80" for the address in use.
-void DescribeEndpoints(std::uint32_t address, TextLine& line);
+void DescribeEndpoints(base::Ipv4Address address, TextLine& line);
 
 }  // namespace firmware

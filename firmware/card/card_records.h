@@ -21,6 +21,6 @@ inline constexpr hal::NvRecordId kNvWebPasswords = 0x0020;
 // The MAC in kNvFactoryMac; when there is none (or it is not 6 bytes long), a new random unicast,
 // locally administered one, written there. A failing write still gives a working card (a read-only
 // store), only with a new MAC at each start.
-hal::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random);
+base::MacAddress LoadOrCreateMac(hal::NvStore& store, hal::RandomSource& random);
 
 }  // namespace firmware

@@ -228,13 +228,6 @@ void List(hal::TextLine& line, const Array& values) {
   }
 }
 
-void Dotted(hal::TextLine& line, const std::array<std::uint8_t, 4>& a) {
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (i != 0) line.Text(".");
-    line.Unsigned(a[i]);
-  }
-}
-
 // Four uppercase hex digits, as the parameter numbers are written (0x0C81 -> "0C81").
 void Hex4(hal::TextLine& line, std::uint16_t value) {
   static constexpr char kDigits[] = "0123456789ABCDEF";
@@ -330,17 +323,17 @@ void ReportCardConfig(const Card& card, ReportSink& out) {
   out.Value({"c504"}, static_cast<std::uint64_t>(c.ip_mode));
   line.Clear();
   line.Text("ip=");
-  Dotted(line, c.ip);
+  line.Ipv4(c.ip);
   line.Text(" netmask=");
-  Dotted(line, c.netmask);
+  line.Ipv4(c.netmask);
   line.Text(" gateway=");
-  Dotted(line, c.gateway);
+  line.Ipv4(c.gateway);
   out.Line(line.view());
   out.Value({"c523"}, c.timeout_tenths);
   out.Value({"c554"}, c.web_server ? 1 : 0);
   line.Clear();
   line.Text("modbus_master=");
-  Dotted(line, c.modbus_master);
+  line.Ipv4(c.modbus_master);
   out.Line(line.view());
   out.Value({"c604"}, c.io_scanning ? 1 : 0);
   out.Value({"cmod"}, c.cmod);

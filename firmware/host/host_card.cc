@@ -70,7 +70,7 @@ std::string SlirpEndpoints(const hal::host::SlirpFramePort& port) {
          " http=" + http;
 }
 
-bool OpenNetworkPort(const HostOptions& options, const hal::MacAddress& mac, const hal::Clock& clock,
+bool OpenNetworkPort(const HostOptions& options, const base::MacAddress& mac, const hal::Clock& clock,
                      NetworkPort& out, std::string& error) {
   if (options.net == NetKind::kTap) {
     auto tap = hal::host::TapFramePort::Open(options.tap_interfaces, mac, &error);
@@ -122,7 +122,7 @@ CardExit RunHostCard(const HostOptions& options, std::string& error) {
 
   auto store = hal::host::FileNvStore::Open(options.state_dir + "/card", &error);
   if (!store.ok()) return CardExit::kFailed;
-  const hal::MacAddress mac = firmware::LoadOrCreateMac(*store.value(), random);
+  const base::MacAddress mac = firmware::LoadOrCreateMac(*store.value(), random);
 
   // The serial line to the inverter: with --drive, a connection to an inverter in another process;
   // otherwise a socket pair, the card's UART on one end and the simulated inverter on the other

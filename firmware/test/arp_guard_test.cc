@@ -20,7 +20,7 @@ namespace {
 using Bytes = std::vector<std::uint8_t>;
 using Verdict = ArpGuard::Verdict;
 
-constexpr std::array<std::uint8_t, 6> kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
+constexpr base::MacAddress kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
 constexpr std::uint32_t kCard = 0xC0A8010C;  // 192.168.1.12
 constexpr std::uint32_t kPeer = 0xC0A8011E;  // 192.168.1.30
 
@@ -37,13 +37,13 @@ Bytes Arp(std::uint16_t operation, std::uint32_t sender, std::uint32_t target, s
 
 class FakeCache final : public ArpCacheQuery {
  public:
-  bool Has(std::uint32_t address) const override { return entries.count(address) != 0; }
+  bool Has(base::Ipv4Address address) const override { return entries.count(address.HostOrder()) != 0; }
   std::set<std::uint32_t> entries;
 };
 
 class ArpGuardTest : public ::testing::Test {
  protected:
-  void SetUp() override { guard_.SetIdentity(kCardMac, kCard); }
+  void SetUp() override { guard_.SetIdentity(kCardMac, base::Ipv4Address(kCard)); }
   Verdict Inspect(const Bytes& frame, std::uint32_t now_ms = 1000) { return guard_.Inspect(frame, cache_, now_ms); }
 
   ArpGuard guard_;
@@ -112,7 +112,7 @@ TEST_F(ArpGuardTest, FramesLwipDoesNotLearnFrom_ToLwip) {
 }
 
 TEST_F(ArpGuardTest, NoAddressYet_EverythingToLwip) {
-  guard_.SetIdentity(kCardMac, 0);
+  guard_.SetIdentity(kCardMac, base::Ipv4Address());
   EXPECT_EQ(Inspect(Arp(1, kPeer, 0)), Verdict::kPass);
   EXPECT_EQ(Inspect(Arp(2, kPeer, 0)), Verdict::kPass);
 }
@@ -128,7 +128,7 @@ TEST(CardNetifArpGuard, StrangersFloodKeepsThePeersEntry) {
   hal::test::EnsureLwipInitialised();
   hal::test::FakeFramePort port(kCardMac);
   CardNetif netif(port);
-  netif.Start(Ipv4Config{kCard, 0xFFFFFF00, 0xC0A80101}, "ipe002z");
+  netif.Start(Ipv4Config{base::Ipv4Address(kCard), base::Ipv4Address(0xFFFFFF00), base::Ipv4Address(0xC0A80101)}, "ipe002z");
   ip4_addr_t peer;
   ip4_addr_set_u32(&peer, lwip_htonl(kPeer));
   ASSERT_EQ(etharp_request(&netif.lwip_netif(), &peer), ERR_OK);  // the card asks for its peer ...

@@ -10,12 +10,12 @@
 namespace firmware::test {
 namespace {
 
-constexpr hal::MacAddress kServerMac = {0x02, 0x00, 0x00, 0x00, 0x00, 0x67};
+constexpr base::MacAddress kServerMac = {0x02, 0x00, 0x00, 0x00, 0x00, 0x67};
 constexpr std::uint32_t kServerIp = 0xC0A80101;  // 192.168.1.1
 constexpr std::uint32_t kLeased = 0xC0A80132;    // 192.168.1.50
 
 // A BOOTREPLY (RFC 951 §3) with vendor options (RFC 1497 cookie, mask, router, end), 300 bytes.
-Bytes BootReplyPayload(std::uint32_t xid, const hal::MacAddress& chaddr, std::uint32_t yiaddr,
+Bytes BootReplyPayload(std::uint32_t xid, const base::MacAddress& chaddr, std::uint32_t yiaddr,
                        std::uint32_t mask, std::uint32_t router) {
   Bytes m;
   m.push_back(2);  // BOOTREPLY
@@ -43,7 +43,7 @@ Bytes BootReplyPayload(std::uint32_t xid, const hal::MacAddress& chaddr, std::ui
 }
 
 Bytes BootReplyFrame(const Bytes& payload, std::uint16_t source_port = 67) {
-  return UdpFrameBytes(kBroadcastMac, kServerMac, kServerIp, 0xFFFFFFFF, source_port, 68, payload);
+  return UdpFrameBytes(base::kBroadcastMac, kServerMac, kServerIp, 0xFFFFFFFF, source_port, 68, payload);
 }
 
 class BootpAddressingTest : public AddressingHarness {
@@ -73,7 +73,7 @@ TEST_F(BootpAddressingTest, FirstRequest_ExactFrameFromPort68ToTheLimitedBroadca
   const Bytes& f = frames[0].bytes;
   ASSERT_EQ(f.size(), 14u + 20u + 8u + 300u);
   EXPECT_EQ(Bytes(f.begin(), f.begin() + 6), Bytes(6, 0xFF));         // Ethernet broadcast
-  EXPECT_EQ(Bytes(f.begin() + 6, f.begin() + 12), Bytes(kCardMac.begin(), kCardMac.end()));
+  EXPECT_EQ(Bytes(f.begin() + 6, f.begin() + 12), Bytes(kCardMac.octets().begin(), kCardMac.octets().end()));
   EXPECT_EQ(Get16(f, 16), 328u);  // IP total length
   EXPECT_TRUE(request.ip_checksum_ok);
   EXPECT_EQ(request.src_ip, 0u);
@@ -92,7 +92,7 @@ TEST_F(BootpAddressingTest, FirstRequest_ExactFrameFromPort68ToTheLimitedBroadca
   EXPECT_EQ(Get16(m, 8), 0u);        // secs
   EXPECT_EQ(Get16(m, 10), 0x8000u);  // the BROADCAST flag (RFC 1542)
   EXPECT_EQ(Bytes(m.begin() + 12, m.begin() + 28), Bytes(16, 0));  // ciaddr, yiaddr, siaddr, giaddr
-  EXPECT_EQ(Bytes(m.begin() + 28, m.begin() + 34), Bytes(kCardMac.begin(), kCardMac.end()));
+  EXPECT_EQ(Bytes(m.begin() + 28, m.begin() + 34), Bytes(kCardMac.octets().begin(), kCardMac.octets().end()));
   EXPECT_EQ(Bytes(m.begin() + 34, m.begin() + 236), Bytes(202, 0));  // chaddr padding, sname, file
   Bytes vend = {0x63, 0x82, 0x53, 0x63, 0xFF};
   vend.resize(64, 0);
@@ -182,7 +182,7 @@ TEST_F(BootpAddressingTest, ReplyWithoutMask_ClassfulMask_RouterOffSubnetDropped
 
 TEST_F(BootpAddressingTest, RepliesForAnotherMacOrXidOrFromAnotherPort_Ignored) {
   const SentUdp request = ConfigureBootp();
-  constexpr hal::MacAddress kOtherClient = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC1};
+  constexpr base::MacAddress kOtherClient = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC1};
   Receive(BootReplyFrame(BootReplyPayload(Xid(request), kOtherClient, kLeased, 0xFFFFFF00, kServerIp)));
   Receive(BootReplyFrame(BootReplyPayload(Xid(request) + 1, kCardMac, kLeased, 0xFFFFFF00, kServerIp)));
   Receive(BootReplyFrame(BootReplyPayload(Xid(request), kCardMac, kLeased, 0xFFFFFF00, kServerIp), 1067));

@@ -14,7 +14,7 @@
 namespace firmware::test {
 namespace {
 
-constexpr hal::MacAddress kServerMac = {0x02, 0x00, 0x00, 0x00, 0x00, 0x43};
+constexpr base::MacAddress kServerMac = {0x02, 0x00, 0x00, 0x00, 0x00, 0x43};
 constexpr std::uint32_t kServerIp = 0xC0A80101;  // 192.168.1.1
 constexpr std::uint32_t kOffered = 0xC0A8013C;   // 192.168.1.60
 const std::string kName = "VFS15-LINE3";
@@ -84,7 +84,7 @@ Bytes ServerReply(std::uint8_t type, std::uint32_t xid, std::uint32_t yiaddr) {
                          1, 4, 255, 255, 255, 0, 3, 4, 192, 168, 1, 1, 255};
   m.insert(m.end(), options.begin(), options.end());
   m.resize(300, 0);
-  return UdpFrameBytes(kBroadcastMac, kServerMac, kServerIp, 0xFFFFFFFF, 67, 68, m);
+  return UdpFrameBytes(base::kBroadcastMac, kServerMac, kServerIp, 0xFFFFFFFF, 67, 68, m);
 }
 
 // The server's ARP reply to the card (for the leased address the card asked from).
@@ -144,7 +144,7 @@ TEST_F(DhcpAddressingTest, Discover_ClientIdIsType0PlusDeviceName_HostNameOption
   EXPECT_TRUE(udp.ip_checksum_ok);
   ASSERT_GE(discover.size(), 240u);
   EXPECT_EQ(discover[0], 1);
-  EXPECT_EQ(Bytes(discover.begin() + 28, discover.begin() + 34), Bytes(kCardMac.begin(), kCardMac.end()));
+  EXPECT_EQ(Bytes(discover.begin() + 28, discover.begin() + 34), Bytes(kCardMac.octets().begin(), kCardMac.octets().end()));
   EXPECT_EQ(Type(discover), kDiscover);
   const auto options = Options(discover);
   ASSERT_EQ(options.count(12), 1u);
@@ -219,7 +219,7 @@ TEST_F(DhcpAddressingTest, FullExchange_ArpCheckedLeaseInstalledThenClaimedByAcd
 TEST_F(DhcpAddressingTest, AcdYieldsLease_ReleasedAndDiscoverAgainAfterTenSeconds) {
   Lease();
   RunFor(5 * kSec);
-  const Bytes conflict = ArpFrameBytes(1, kBroadcastMac, kOtherMac, kOtherMac, kOffered, kZeroMac, kOffered);
+  const Bytes conflict = ArpFrameBytes(1, base::kBroadcastMac, kOtherMac, kOtherMac, kOffered, base::kZeroMac, kOffered);
   Receive(conflict);  // defended
   EXPECT_EQ(LwipAddress(), kOffered);
   RunFor(1 * kSec);
@@ -233,7 +233,7 @@ TEST_F(DhcpAddressingTest, AcdYieldsLease_ReleasedAndDiscoverAgainAfterTenSecond
   // (unicast to the server) waits for the server's MAC: lwIP asks for it.
   auto arp = ArpSince(mark);
   ASSERT_EQ(arp.size(), 1u);
-  EXPECT_EQ(arp[0].bytes, ArpFrameBytes(1, kBroadcastMac, kCardMac, kCardMac, kOffered, kZeroMac, kServerIp));
+  EXPECT_EQ(arp[0].bytes, ArpFrameBytes(1, base::kBroadcastMac, kCardMac, kCardMac, kOffered, base::kZeroMac, kServerIp));
   EXPECT_TRUE(DhcpSince(mark).empty());
   Receive(ServerArpReply());
   auto messages = DhcpSince(mark);

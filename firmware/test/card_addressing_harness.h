@@ -23,14 +23,14 @@ using hal::Micros;
 inline constexpr Micros kMs = hal::kMicrosPerMilli;
 inline constexpr Micros kSec = hal::kMicrosPerSecond;
 
-inline constexpr hal::MacAddress kCardMac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};
-inline constexpr hal::MacAddress kOtherMac = {0x02, 0xAA, 0xBB, 0xCC, 0xDD, 0xEE};
-inline constexpr hal::MacAddress kBroadcastMac = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF};
-inline constexpr hal::MacAddress kZeroMac = {};
+inline constexpr base::MacAddress kCardMac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};
+inline constexpr base::MacAddress kOtherMac = {0x02, 0xAA, 0xBB, 0xCC, 0xDD, 0xEE};
 
 using Bytes = std::vector<std::uint8_t>;
 
-inline void PutMac(Bytes& out, const hal::MacAddress& mac) { out.insert(out.end(), mac.begin(), mac.end()); }
+inline void PutMac(Bytes& out, const base::MacAddress& mac) {
+  out.insert(out.end(), mac.octets().begin(), mac.octets().end());
+}
 inline void Put16(Bytes& out, std::uint16_t v) {
   out.push_back(static_cast<std::uint8_t>(v >> 8));
   out.push_back(static_cast<std::uint8_t>(v));
@@ -47,9 +47,9 @@ inline std::uint32_t Get32(std::span<const std::uint8_t> b, std::size_t at) {
 }
 
 // Ethernet + ARP (RFC 826), 42 bytes.
-inline Bytes ArpFrameBytes(std::uint16_t operation, const hal::MacAddress& destination, const hal::MacAddress& source,
-                           const hal::MacAddress& sender_mac, std::uint32_t sender_ip,
-                           const hal::MacAddress& target_mac, std::uint32_t target_ip) {
+inline Bytes ArpFrameBytes(std::uint16_t operation, const base::MacAddress& destination, const base::MacAddress& source,
+                           const base::MacAddress& sender_mac, std::uint32_t sender_ip,
+                           const base::MacAddress& target_mac, std::uint32_t target_ip) {
   Bytes f;
   PutMac(f, destination);
   PutMac(f, source);
@@ -68,10 +68,10 @@ inline Bytes ArpFrameBytes(std::uint16_t operation, const hal::MacAddress& desti
 
 // RFC 5227 §2.1.1 probe and §2.3 announcement of the card.
 inline Bytes CardProbe(std::uint32_t address) {
-  return ArpFrameBytes(1, kBroadcastMac, kCardMac, kCardMac, 0, kZeroMac, address);
+  return ArpFrameBytes(1, base::kBroadcastMac, kCardMac, kCardMac, 0, base::kZeroMac, address);
 }
 inline Bytes CardAnnouncement(std::uint32_t address) {
-  return ArpFrameBytes(1, kBroadcastMac, kCardMac, kCardMac, address, kZeroMac, address);
+  return ArpFrameBytes(1, base::kBroadcastMac, kCardMac, kCardMac, address, base::kZeroMac, address);
 }
 
 // The RFC 1071 sum over `bytes` added to `sum` (not yet folded or complemented).
@@ -86,7 +86,7 @@ inline std::uint16_t FoldComplement(std::uint32_t sum) {
 }
 
 // Ethernet + IPv4 (20-byte header without options, checksum set) around `payload`.
-inline Bytes Ipv4FrameBytes(const hal::MacAddress& destination, const hal::MacAddress& source, std::uint32_t src_ip,
+inline Bytes Ipv4FrameBytes(const base::MacAddress& destination, const base::MacAddress& source, std::uint32_t src_ip,
                             std::uint32_t dst_ip, std::uint8_t protocol, std::span<const std::uint8_t> payload) {
   Bytes ip;
   ip.push_back(0x45);
@@ -113,7 +113,7 @@ inline Bytes Ipv4FrameBytes(const hal::MacAddress& destination, const hal::MacAd
 }
 
 // Ethernet + IPv4 + UDP (checksum over the pseudo-header set).
-inline Bytes UdpFrameBytes(const hal::MacAddress& destination, const hal::MacAddress& source, std::uint32_t src_ip,
+inline Bytes UdpFrameBytes(const base::MacAddress& destination, const base::MacAddress& source, std::uint32_t src_ip,
                            std::uint32_t dst_ip, std::uint16_t src_port, std::uint16_t dst_port,
                            std::span<const std::uint8_t> payload) {
   const auto udp_length = static_cast<std::uint16_t>(8 + payload.size());
@@ -162,8 +162,8 @@ inline SentUdp ParseUdp(std::span<const std::uint8_t> f) {
   return u;
 }
 
-inline config::CardConfig ManualConfig(std::array<std::uint8_t, 4> ip, std::array<std::uint8_t, 4> mask,
-                                           std::array<std::uint8_t, 4> gateway = {}) {
+inline config::CardConfig ManualConfig(base::Ipv4Address ip, base::Ipv4Address mask,
+                                           base::Ipv4Address gateway = {}) {
   config::CardConfig config;
   config.ip_mode = config::IpMode::kManual;
   config.ip = ip;

@@ -18,7 +18,7 @@ Bytes ConflictingReply() {
   return ArpFrameBytes(2, kCardMac, kOtherMac, kOtherMac, kAddress, kCardMac, 0);
 }
 Bytes ConflictingAnnouncement() {
-  return ArpFrameBytes(1, kBroadcastMac, kOtherMac, kOtherMac, kAddress, kZeroMac, kAddress);
+  return ArpFrameBytes(1, base::kBroadcastMac, kOtherMac, kOtherMac, kAddress, base::kZeroMac, kAddress);
 }
 
 class ManualAddressingTest : public AddressingHarness {
@@ -70,7 +70,7 @@ TEST_F(ManualAddressingTest, Probing_FourExactProbes200MsApart_NoAddressUntilAnn
   EXPECT_EQ(LwipMask(), 0xFFFFFF00u);
   EXPECT_EQ(LwipGateway(), 0xC0A80101u);
   EXPECT_EQ(addressing_.phase(), AddressPhase::kInUse);
-  EXPECT_EQ(addressing_.active(), (Ipv4Config{kAddress, 0xFFFFFF00, 0xC0A80101}));
+  EXPECT_EQ(addressing_.active(), (Ipv4Config{base::Ipv4Address(kAddress), base::Ipv4Address(0xFFFFFF00), base::Ipv4Address(0xC0A80101)}));
   EXPECT_FALSE(addressing_.duplicate_detected());
   // ACD's first announcement, then lwIP's own gratuitous ARP for the new address (the same bytes).
   arp = ArpSince();
@@ -130,7 +130,7 @@ TEST_F(ManualAddressingTest, ConflictWhileProbing_AddressNeverInstalled_RetriedA
 TEST_F(ManualAddressingTest, ProbeFromAnotherHostForTheSameAddress_IsAConflictToo) {
   ASSERT_TRUE(addressing_.Configure(SeedConfig()).ok());
   RunFor(250 * kMs);
-  Receive(ArpFrameBytes(1, kBroadcastMac, kOtherMac, kOtherMac, 0, kZeroMac, kAddress));
+  Receive(ArpFrameBytes(1, base::kBroadcastMac, kOtherMac, kOtherMac, 0, base::kZeroMac, kAddress));
   EXPECT_EQ(addressing_.phase(), AddressPhase::kConflict);
   RunFor(5 * kSec);
   EXPECT_EQ(LwipAddress(), 0u);
@@ -140,7 +140,7 @@ TEST_F(ManualAddressingTest, UnrelatedArpWhileProbing_NoConflict) {
   ASSERT_TRUE(addressing_.Configure(SeedConfig()).ok());
   RunFor(250 * kMs);
   // Another host asking for a third address, and our own probe reflected back: neither conflicts.
-  Receive(ArpFrameBytes(1, kBroadcastMac, kOtherMac, kOtherMac, kOtherIp, kZeroMac, 0xC0A80101));
+  Receive(ArpFrameBytes(1, base::kBroadcastMac, kOtherMac, kOtherMac, kOtherIp, base::kZeroMac, 0xC0A80101));
   Receive(CardProbe(kAddress));
   RunFor(1 * kSec);
   EXPECT_EQ(LwipAddress(), kAddress);
@@ -214,7 +214,7 @@ TEST_F(ManualAddressingTest, PortLinkUpInUse_TwoSemiActiveProbes) {
 }
 
 class UnusableManualAddressTest : public AddressingHarness,
-                                  public ::testing::WithParamInterface<std::array<std::uint8_t, 4>> {};
+                                  public ::testing::WithParamInterface<base::Ipv4Address> {};
 
 TEST_P(UnusableManualAddressTest, NoAddressNoArp_NotConfigured) {
   ASSERT_TRUE(addressing_.Configure(ManualConfig(GetParam(), {255, 0, 0, 0})).ok());
@@ -228,19 +228,19 @@ TEST_P(UnusableManualAddressTest, NoAddressNoArp_NotConfigured) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Addresses, UnusableManualAddressTest,
-                         ::testing::Values(std::array<std::uint8_t, 4>{0, 0, 0, 0},
-                                           std::array<std::uint8_t, 4>{127, 0, 0, 1},
-                                           std::array<std::uint8_t, 4>{224, 0, 0, 5},
-                                           std::array<std::uint8_t, 4>{255, 255, 255, 255},
-                                           std::array<std::uint8_t, 4>{0, 1, 2, 3}));
+                         ::testing::Values(base::Ipv4Address{0, 0, 0, 0},
+                                           base::Ipv4Address{127, 0, 0, 1},
+                                           base::Ipv4Address{224, 0, 0, 5},
+                                           base::Ipv4Address{255, 255, 255, 255},
+                                           base::Ipv4Address{0, 1, 2, 3}));
 
 TEST(ClassfulMaskTest, ClassAbc) {
-  EXPECT_EQ(ClassfulMask(0x0A010203), 0xFF000000u);  // 10.1.2.3
-  EXPECT_EQ(ClassfulMask(0x7E000001), 0xFF000000u);  // 126.0.0.1
-  EXPECT_EQ(ClassfulMask(0x80000001), 0xFFFF0000u);  // 128.0.0.1
-  EXPECT_EQ(ClassfulMask(0xAC100005), 0xFFFF0000u);  // 172.16.0.5
-  EXPECT_EQ(ClassfulMask(0xC0A8010C), 0xFFFFFF00u);  // 192.168.1.12
-  EXPECT_EQ(ClassfulMask(0xDFFFFF01), 0xFFFFFF00u);  // 223.255.255.1
+  EXPECT_EQ(ClassfulMask(base::Ipv4Address(0x0A010203)), base::Ipv4Address(0xFF000000u));  // 10.1.2.3
+  EXPECT_EQ(ClassfulMask(base::Ipv4Address(0x7E000001)), base::Ipv4Address(0xFF000000u));  // 126.0.0.1
+  EXPECT_EQ(ClassfulMask(base::Ipv4Address(0x80000001)), base::Ipv4Address(0xFFFF0000u));  // 128.0.0.1
+  EXPECT_EQ(ClassfulMask(base::Ipv4Address(0xAC100005)), base::Ipv4Address(0xFFFF0000u));  // 172.16.0.5
+  EXPECT_EQ(ClassfulMask(base::Ipv4Address(0xC0A8010C)), base::Ipv4Address(0xFFFFFF00u));  // 192.168.1.12
+  EXPECT_EQ(ClassfulMask(base::Ipv4Address(0xDFFFFF01)), base::Ipv4Address(0xFFFFFF00u));  // 223.255.255.1
 }
 
 class ManualAcdOffTest : public AddressingHarness {
@@ -300,7 +300,7 @@ TEST_F(ManualAcdOffTest, GatewayOffSubnet_NoGateway) {
   ASSERT_TRUE(addressing_.Configure(ManualConfig({192, 168, 1, 12}, {255, 255, 255, 0}, {192, 168, 2, 1})).ok());
   EXPECT_EQ(LwipAddress(), kAddress);
   EXPECT_EQ(LwipGateway(), 0u);
-  EXPECT_EQ(addressing_.active().gateway, 0u);
+  EXPECT_EQ(addressing_.active().gateway, base::Ipv4Address(0u));
 }
 
 TEST_F(ManualAddressingTest, SamePlanAgain_NoRestartNoProbe) {

@@ -30,7 +30,7 @@ class FakeConnections final : public cip::ConnectionTable {
     return std::min(open, out.size());
   }
   bool IsOwned(std::uint32_t) const override { return false; }
-  bool OwnedByAnotherOriginator(std::uint32_t) const override { return false; }
+  bool OwnedByAnotherOriginator(base::Ipv4Address) const override { return false; }
   cip::ExtendedDeviceStatus IoStatus() const override { return status; }
 
   std::size_t open = 0;

@@ -17,8 +17,8 @@ using hal::PortId;
 using hal::test::FakeFramePort;
 
 constexpr std::uint32_t kCardIp = 0xC0A8010C;  // 192.168.1.12
-constexpr hal::MacAddress kStationA = {0x02, 0x00, 0x00, 0x00, 0x00, 0x0A};
-constexpr hal::MacAddress kStationB = {0x02, 0x00, 0x00, 0x00, 0x00, 0x0B};
+constexpr base::MacAddress kStationA = {0x02, 0x00, 0x00, 0x00, 0x00, 0x0A};
+constexpr base::MacAddress kStationB = {0x02, 0x00, 0x00, 0x00, 0x00, 0x0B};
 constexpr std::uint32_t kIpA = 0xC0A8010A;
 constexpr std::uint32_t kIpB = 0xC0A8010B;
 
@@ -31,7 +31,7 @@ class RecordingObserver final : public NetifObserver {
 };
 
 // Ethernet + IPv4 + ICMP echo request (RFC 792), checksums set.
-Bytes EchoRequest(const hal::MacAddress& destination, const hal::MacAddress& source, std::uint32_t src_ip,
+Bytes EchoRequest(const base::MacAddress& destination, const base::MacAddress& source, std::uint32_t src_ip,
                   std::uint32_t dst_ip) {
   Bytes icmp = {8, 0, 0, 0, 0x12, 0x34, 0x00, 0x01, 'p', 'i', 'n', 'g'};
   const std::uint16_t icmp_checksum = FoldComplement(OnesSum(icmp));
@@ -40,7 +40,7 @@ Bytes EchoRequest(const hal::MacAddress& destination, const hal::MacAddress& sou
   return Ipv4FrameBytes(destination, source, src_ip, dst_ip, 1, icmp);
 }
 
-bool IsEchoReplyTo(const Bytes& f, const hal::MacAddress& destination) {
+bool IsEchoReplyTo(const Bytes& f, const base::MacAddress& destination) {
   return f.size() >= 35 && std::equal(destination.begin(), destination.end(), f.begin()) && Get16(f, 12) == 0x0800 &&
          f[23] == 1 && f[34] == 0;
 }
@@ -49,7 +49,7 @@ class CardNetifSwitchTest : public ::testing::Test {
  protected:
   CardNetifSwitchTest() {
     hal::test::EnsureLwipInitialised();
-    netif_.Start(Ipv4Config{kCardIp, 0xFFFFFF00, 0}, "ipe002z");
+    netif_.Start(Ipv4Config{base::Ipv4Address(kCardIp), base::Ipv4Address(0xFFFFFF00), {}}, "ipe002z");
     netif_.SetObserver(&observer_);
     port_.sent().clear();  // the link-up gratuitous ARP
   }
@@ -61,8 +61,8 @@ class CardNetifSwitchTest : public ::testing::Test {
   }
   // The station asks for the card (the switch learns its port); the card asks back and the station
   // answers (lwIP learns its MAC: the ArpGuard lets no stranger's request into the cache).
-  void Introduce(const hal::MacAddress& mac, std::uint32_t ip, PortId from) {
-    Pump(ArpFrameBytes(1, kBroadcastMac, mac, mac, ip, kZeroMac, kCardIp), from);
+  void Introduce(const base::MacAddress& mac, std::uint32_t ip, PortId from) {
+    Pump(ArpFrameBytes(1, base::kBroadcastMac, mac, mac, ip, base::kZeroMac, kCardIp), from);
     ip4_addr_t address;
     ip4_addr_set_u32(&address, lwip_htonl(ip));
     ASSERT_EQ(etharp_request(&netif_.lwip_netif(), &address), ERR_OK);
@@ -108,7 +108,7 @@ TEST_F(CardNetifSwitchTest, UnicastToAStationOnTheSamePort_Filtered) {
 }
 
 TEST_F(CardNetifSwitchTest, Broadcast_ToLwipAndTheOtherPort_ReplyOutOfTheLearnedPortOnly) {
-  const Bytes request = ArpFrameBytes(1, kBroadcastMac, kStationA, kStationA, kIpA, kZeroMac, kCardIp);
+  const Bytes request = ArpFrameBytes(1, base::kBroadcastMac, kStationA, kStationA, kIpA, base::kZeroMac, kCardIp);
   Pump(request, PortId::kLeft);
   ASSERT_EQ(port_.sent().size(), 2u);
   EXPECT_EQ(port_.sent()[0].port, PortId::kRight);  // flooded first, then lwIP answers

@@ -12,7 +12,7 @@ namespace {
 using hal::PortId;
 using hal::test::FakeFramePort;
 
-constexpr hal::MacAddress kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
+constexpr base::MacAddress kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
 
 // ARP request from 192.168.1.30 (peer) asking for 192.168.1.12 (the card).
 std::vector<std::uint8_t> ArpRequestForCard() {
@@ -32,7 +32,7 @@ std::vector<std::uint8_t> ExpectedArpReply() {
 class CardNetifTest : public ::testing::Test {
  protected:
   void SetUp() override { hal::test::EnsureLwipInitialised(); }
-  firmware::Ipv4Config config_{0xC0A8010C, 0xFFFFFF00, 0xC0A80101};  // 192.168.1.12/24 (seed §9 example)
+  firmware::Ipv4Config config_{base::Ipv4Address(0xC0A8010C), base::Ipv4Address(0xFFFFFF00), base::Ipv4Address(0xC0A80101)};  // 192.168.1.12/24 (seed §9 example)
 };
 
 TEST_F(CardNetifTest, ArpRequestForCard_AnsweredWithExactReply) {

@@ -39,9 +39,9 @@ inline void MacFirstStart(hal::NvStore& store) {
 inline void ExpectMacAfterRestart(hal::NvStore& store, bool new_expected) {
   CountingRandom random;
   random.next_ = 0x90;  // another draw than the interrupted start's
-  const hal::MacAddress mac = LoadOrCreateMac(store, random);
-  const hal::MacAddress expected = new_expected ? hal::MacAddress{0x42, 0x41, 0x42, 0x43, 0x44, 0x45}
-                                                : hal::MacAddress{0x92, 0x91, 0x92, 0x93, 0x94, 0x95};
+  const base::MacAddress mac = LoadOrCreateMac(store, random);
+  const base::MacAddress expected = new_expected ? base::MacAddress{0x42, 0x41, 0x42, 0x43, 0x44, 0x45}
+                                                : base::MacAddress{0x92, 0x91, 0x92, 0x93, 0x94, 0x95};
   EXPECT_EQ(mac, expected);
   CountingRandom unused;
   EXPECT_EQ(LoadOrCreateMac(store, unused), expected);  // and the next start keeps it
@@ -62,7 +62,7 @@ class TcpIpExtrasFixture : public drive_link::test::RegisterProxyFixture {
     return tcpip.StoredSettings();
   }
 
-  hal::test::FakeFramePort port_{hal::MacAddress{0x02, 0, 0, 0, 0, 1}, 2};
+  hal::test::FakeFramePort port_{base::MacAddress{0x02, 0, 0, 0, 0, 1}, 2};
   CardNetif netif_{port_};
   CountingRandom random_;
   CardAddressing addressing_{netif_, clock_, random_};

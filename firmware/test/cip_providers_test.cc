@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "card_addressing_harness.h"
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/tcpip_interface_object.h"
 #include "fake_frame_port.h"
 #include "lwip_fixture.h"
@@ -26,7 +27,7 @@ using drive_link::test::kSecond;
 
 using hal::test::MemoryNvStore;
 
-constexpr hal::MacAddress kMac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};
+constexpr base::MacAddress kMac = {0x00, 0x80, 0xF4, 0x7D, 0x02, 0xC0};
 
 class CipProvidersTest : public drive_link::test::RegisterProxyFixture {
  protected:
@@ -242,7 +243,7 @@ TEST_F(CipProvidersTest, LinkState_PerPortFromTheFramePort) {
 
 TEST_F(CipProvidersTest, Counters_ByDestinationKindAndClearedByBaseline) {
   StartCard();
-  netif_.Start(Ipv4Config{0xC0A8010C, 0xFFFFFF00, 0}, "card");
+  netif_.Start(Ipv4Config{base::Ipv4Address(0xC0A8010C), base::Ipv4Address(0xFFFFFF00), {}}, "card");
   std::vector<std::uint8_t> unicast(60, 0);
   std::copy(kMac.begin(), kMac.end(), unicast.begin());
   std::vector<std::uint8_t> broadcast(60, 0xFF);
@@ -324,7 +325,7 @@ class CardTcpIpAcdTest : public CipProvidersTest {
   std::vector<std::uint8_t> Attribute(std::uint16_t id) {
     cip::TcpIpInterfaceObject object(*tcpip_);
     std::array<std::uint8_t, 64> buffer{};
-    cip::ByteWriter out(buffer);
+    base::ByteWriter out(buffer);
     object.GetInstanceAttribute(1, id, out);
     EXPECT_TRUE(out.ok());
     return {out.written().begin(), out.written().end()};
@@ -338,11 +339,11 @@ class CardTcpIpAcdTest : public CipProvidersTest {
   }
 };
 
-constexpr hal::MacAddress kIntruder = {0x02, 0x12, 0x34, 0x56, 0x78, 0x9A};
+constexpr base::MacAddress kIntruder = {0x02, 0x12, 0x34, 0x56, 0x78, 0x9A};
 
 // The intruder's gratuitous ARP for 192.168.1.12, and the 28-byte ARP PDU inside it.
 std::vector<std::uint8_t> IntruderAnnouncement() {
-  return test::ArpFrameBytes(1, test::kBroadcastMac, kIntruder, kIntruder, 0xC0A8010C, test::kZeroMac, 0xC0A8010C);
+  return test::ArpFrameBytes(1, base::kBroadcastMac, kIntruder, kIntruder, 0xC0A8010C, base::kZeroMac, 0xC0A8010C);
 }
 const std::vector<std::uint8_t> kIntruderPdu = {0x00, 0x01, 0x08, 0x00, 0x06, 0x04, 0x00, 0x01,        // request
                                                 0x02, 0x12, 0x34, 0x56, 0x78, 0x9A, 192,  168, 1, 12,  // sender
@@ -381,7 +382,7 @@ TEST_F(CardTcpIpAcdTest, YieldedInUse_Bit6AndAttribute11Exact_ClearedBySet) {
   // the address is claimed again.
   cip::TcpIpInterfaceObject object(*tcpip_);
   const std::vector<std::uint8_t> zeros(35, 0);
-  cip::ByteReader value(zeros);
+  base::ByteReader value(zeros);
   EXPECT_TRUE(object.SetInstanceAttribute(1, 11, value).ok());
   EXPECT_EQ(Attribute(11), zeros);
   EXPECT_EQ(addressing_.last_conflict(), net::AcdConflictRecord{});
@@ -409,7 +410,7 @@ TEST_F(CardTcpIpAcdTest, ConflictWhileProbing_Activity1_ClearLastConflict) {
   EXPECT_EQ(std::vector<std::uint8_t>(attribute.begin() + 7, attribute.end()), kIntruderPdu);
   tcpip_->ClearLastConflict();
   EXPECT_EQ(tcpip_->LastConflict().acd_activity, 0);
-  EXPECT_EQ(tcpip_->LastConflict().remote_mac, cip::MacAddress{});
+  EXPECT_EQ(tcpip_->LastConflict().remote_mac, base::MacAddress{});
   EXPECT_EQ(tcpip_->LastConflict().arp_pdu, (std::array<std::uint8_t, 28>{}));
   EXPECT_EQ(Attribute(11), std::vector<std::uint8_t>(35, 0));
 }

@@ -46,7 +46,7 @@ class EventLoopDueTest : public ::testing::Test {
  protected:
   void SetUp() override {
     hal::test::EnsureLwipInitialised();
-    netif_.Start({0x0A00020F, 0xFFFFFF00, 0x0A000202}, "ipe002z");
+    netif_.Start({base::Ipv4Address(0x0A00020F), base::Ipv4Address(0xFFFFFF00), base::Ipv4Address(0x0A000202)}, "ipe002z");
   }
   // The tests move the clock by at most 100 µs after a first pass has run lwIP's due timers; no lwIP
   // timer may fall in that window, or its pass would be an event.

@@ -39,7 +39,7 @@ class EventLoopTest : public ::testing::Test {
  protected:
   void SetUp() override {
     hal::test::EnsureLwipInitialised();
-    netif_.Start({0x0A00020F, 0xFFFFFF00, 0x0A000202}, "ipe002z");
+    netif_.Start({base::Ipv4Address(0x0A00020F), base::Ipv4Address(0xFFFFFF00), base::Ipv4Address(0x0A000202)}, "ipe002z");
   }
   hal::test::FakeClock& clock_ = hal::test::LwipTestClock();
   hal::test::FakeFramePort port_{{0x02, 0, 0, 0, 0, 1}};

@@ -48,7 +48,7 @@ class IoServiceTest : public test::LwipPairTest {
     cip::RequestContext context;
     context.now = clock().NowMicros();
     context.session_handle = cip::test::kSession;
-    context.peer = cip::Ipv4Endpoint{test::kPeerIp, 50000};
+    context.peer = cip::Ipv4Endpoint{base::Ipv4Address(test::kPeerIp), 50000};
     context.request_t_to_o = cip::SocketAddress{cip::SocketAddress::kAfInet, kPeerPort, test::kPeerIp};
     reply.resize(card_.card.cip.router().HandleUnconnected(cip::test::ForwardOpenRequestBytes(params), context, reply));
     return reply;

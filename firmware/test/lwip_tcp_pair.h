@@ -22,8 +22,8 @@ namespace firmware::test {
 
 using Bytes = std::vector<std::uint8_t>;
 
-inline constexpr hal::MacAddress kPeerMac = {0x02, 0xAA, 0xBB, 0xCC, 0xDD, 0xEE};
-inline constexpr hal::MacAddress kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
+inline constexpr base::MacAddress kPeerMac = {0x02, 0xAA, 0xBB, 0xCC, 0xDD, 0xEE};
+inline constexpr base::MacAddress kCardMac = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55};
 inline constexpr std::uint32_t kCardIp = 0xC0A8010C;  // 192.168.1.12
 inline constexpr std::uint32_t kPeerIp = 0xC0A8011E;  // 192.168.1.30
 
@@ -104,8 +104,8 @@ class LwipPairTest : public ::testing::Test {
   LwipPairTest() { hal::test::EnsureLwipInitialised(); }
 
   void StartNetifs() {
-    peer_netif_.Start(Ipv4Config{kPeerIp, 0xFFFFFF00, 0}, "peer");
-    card_netif_.Start(Ipv4Config{kCardIp, 0xFFFFFF00, 0}, "card");
+    peer_netif_.Start(Ipv4Config{base::Ipv4Address(kPeerIp), base::Ipv4Address(0xFFFFFF00), {}}, "peer");
+    card_netif_.Start(Ipv4Config{base::Ipv4Address(kCardIp), base::Ipv4Address(0xFFFFFF00), {}}, "card");
   }
 
   // Aborts every client PCB still open (the card's side is the test's to stop).

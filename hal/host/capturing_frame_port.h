@@ -22,14 +22,14 @@ class CapturingFramePort final : public FramePort {
   CapturingFramePort(FramePort& inner, PcapWriter& writer,
                      std::function<Micros()> now = WallClockMicros);
 
-  MacAddress Mac() const override { return inner_.Mac(); }
+  base::MacAddress Mac() const override { return inner_.Mac(); }
   std::size_t PortCount() const override { return inner_.PortCount(); }
   LinkState Link(PortId port) const override { return inner_.Link(port); }
   PortCounters Counters(PortId port) const override { return inner_.Counters(port); }
   base::Result<ReceivedFrame> Receive(std::span<std::uint8_t> buffer) override;
   base::Status Transmit(PortId port, std::span<const std::uint8_t> frame) override;
-  base::Status JoinMulticast(const MacAddress& group) override { return inner_.JoinMulticast(group); }
-  base::Status LeaveMulticast(const MacAddress& group) override { return inner_.LeaveMulticast(group); }
+  base::Status JoinMulticast(const base::MacAddress& group) override { return inner_.JoinMulticast(group); }
+  base::Status LeaveMulticast(const base::MacAddress& group) override { return inner_.LeaveMulticast(group); }
 
   // Records that could not be written to the capture file.
   std::size_t capture_errors() const { return capture_errors_; }

@@ -229,7 +229,7 @@ std::string FormatForward(const ActiveForward& forward) {
          std::to_string(forward.guest_port);
 }
 
-SlirpFramePort::SlirpFramePort(MacAddress mac, const Clock& clock, std::size_t rx_queue_frames)
+SlirpFramePort::SlirpFramePort(base::MacAddress mac, const Clock& clock, std::size_t rx_queue_frames)
     : mac_(mac), clock_(clock), rx_ring_(rx_queue_frames) {}
 
 SlirpFramePort::~SlirpFramePort() {

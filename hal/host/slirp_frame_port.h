@@ -88,7 +88,7 @@ struct ActiveForward {
 std::string FormatForward(const ActiveForward& forward);
 
 struct SlirpPortConfig {
-  MacAddress mac = {0x02, 0x00, 0x00, 0x00, 0x00, 0x01};  // the firmware passes the card's own MAC
+  base::MacAddress mac = {0x02, 0x00, 0x00, 0x00, 0x00, 0x01};  // the firmware passes the card's own MAC
   // slirp's virtual network. The DNS proxy is the network's address .3 (must differ from the others).
   std::string network = "10.0.2.0";
   std::string netmask = "255.255.255.0";
@@ -116,7 +116,7 @@ class SlirpFramePort final : public FramePort, public PollSource {
   SlirpFramePort& operator=(const SlirpFramePort&) = delete;
 
   // hal::FramePort
-  MacAddress Mac() const override { return mac_; }
+  base::MacAddress Mac() const override { return mac_; }
   std::size_t PortCount() const override { return 1; }
   LinkState Link(PortId port) const override;
   PortCounters Counters(PortId port) const override;
@@ -142,12 +142,12 @@ class SlirpFramePort final : public FramePort, public PollSource {
     std::size_t length = 0;
   };
 
-  SlirpFramePort(MacAddress mac, const Clock& clock, std::size_t rx_queue_frames);
+  SlirpFramePort(base::MacAddress mac, const Clock& clock, std::size_t rx_queue_frames);
   // A frame from slirp to the card.
   void OnSlirpFrame(std::span<const std::uint8_t> frame);
   void FireDueTimers();
 
-  MacAddress mac_;
+  base::MacAddress mac_;
   const Clock& clock_;
   ::Slirp* slirp_ = nullptr;
   std::string guest_address_;

@@ -71,7 +71,7 @@ int AttachTap(const std::string& ifname) {
 
 }  // namespace
 
-TapFramePort::TapFramePort(MacAddress mac) : mac_(mac), scratch_(kScratchBytes) {}
+TapFramePort::TapFramePort(base::MacAddress mac) : mac_(mac), scratch_(kScratchBytes) {}
 
 TapFramePort::~TapFramePort() {
   for (Port& port : ports_) {
@@ -80,7 +80,7 @@ TapFramePort::~TapFramePort() {
 }
 
 base::Result<std::unique_ptr<TapFramePort>> TapFramePort::Open(std::span<const std::string> ifnames,
-                                                               MacAddress mac,
+                                                               base::MacAddress mac,
                                                                std::string* error_text) {
   if (ifnames.empty() || ifnames.size() > kMaxPorts) {
     SetErrorText(error_text, "a TAP frame port needs 1 or 2 interface names, got " +

@@ -33,14 +33,14 @@ class TapFramePort final : public FramePort, public PollSource {
   // CAP_NET_ADMIN or the interface's `user`). kFailedPrecondition: not a TAP, or already attached
   // elsewhere. `error_text` (optional) receives a sentence naming the interface and the cause.
   static base::Result<std::unique_ptr<TapFramePort>> Open(std::span<const std::string> ifnames,
-                                                          MacAddress mac, std::string* error_text);
+                                                          base::MacAddress mac, std::string* error_text);
 
   ~TapFramePort() override;
   TapFramePort(const TapFramePort&) = delete;
   TapFramePort& operator=(const TapFramePort&) = delete;
 
   // hal::FramePort
-  MacAddress Mac() const override { return mac_; }
+  base::MacAddress Mac() const override { return mac_; }
   std::size_t PortCount() const override { return ports_.size(); }
   LinkState Link(PortId port) const override;
   PortCounters Counters(PortId port) const override;
@@ -66,11 +66,11 @@ class TapFramePort final : public FramePort, public PollSource {
     PortCounters counters;
   };
 
-  explicit TapFramePort(MacAddress mac);
+  explicit TapFramePort(base::MacAddress mac);
   // Reads and throws away every frame waiting on an unplugged port's descriptor.
   void DrainUnplugged(Port& port);
 
-  MacAddress mac_;
+  base::MacAddress mac_;
   std::vector<Port> ports_;
   std::size_t next_port_ = 0;  // round-robin start for the next Receive()
   // A TAP read must be given room for the largest frame the interface may hand over (its MTU can be

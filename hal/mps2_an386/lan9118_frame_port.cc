@@ -1,5 +1,6 @@
 #include "lan9118_frame_port.h"
 
+#include "base/byte_reader.h"
 #include "cortex_m.h"
 #include "lan9118_registers.h"
 #include "mmio.h"
@@ -59,7 +60,7 @@ LinkState Resolve(std::uint32_t control, std::uint32_t status, std::uint32_t adv
 
 }  // namespace
 
-base::Status Lan9118FramePort::Start(const MacAddress& mac) {
+base::Status Lan9118FramePort::Start(const base::MacAddress& mac) {
   mac_ = mac;
   if (Csr(kByteTest) != kByteTestValue) return base::Unavailable();
   chip_id_ = Csr(kIdRev);
@@ -78,9 +79,10 @@ base::Status Lan9118FramePort::Start(const MacAddress& mac) {
 
   {
     CriticalSection masked;
-    WriteMac(kMacAddrL, static_cast<std::uint32_t>(mac[0]) | static_cast<std::uint32_t>(mac[1]) << 8 |
-                            static_cast<std::uint32_t>(mac[2]) << 16 | static_cast<std::uint32_t>(mac[3]) << 24);
-    WriteMac(kMacAddrH, static_cast<std::uint32_t>(mac[4]) | static_cast<std::uint32_t>(mac[5]) << 8);
+    // ADDRL holds octets 0-3 and ADDRH octets 4-5, each little-endian.
+    base::ByteReader octets(mac.octets());
+    WriteMac(kMacAddrL, octets.U32Le());
+    WriteMac(kMacAddrH, octets.U16Le());
     // Own unicast address only (perfect filter), broadcast, multicast by the hash table.
     WriteMac(kMacCr, kMacCrTxEnable | kMacCrRxEnable | kMacCrHashPerfectFilter);
     ProgramMulticast();
@@ -259,14 +261,14 @@ base::Status Lan9118FramePort::Transmit(PortId port, std::span<const std::uint8_
   return base::OkStatus();
 }
 
-base::Status Lan9118FramePort::JoinMulticast(const MacAddress& group) {
+base::Status Lan9118FramePort::JoinMulticast(const base::MacAddress& group) {
   CriticalSection masked;
   filter_.Join(group);
   if (started_) ProgramMulticast();
   return base::OkStatus();
 }
 
-base::Status Lan9118FramePort::LeaveMulticast(const MacAddress& group) {
+base::Status Lan9118FramePort::LeaveMulticast(const base::MacAddress& group) {
   CriticalSection masked;
   if (base::Status left = filter_.Leave(group); !left.ok()) return left;
   if (started_) ProgramMulticast();

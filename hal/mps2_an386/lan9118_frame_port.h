@@ -37,18 +37,18 @@ class Lan9118FramePort final : public FramePort, private InterruptHandler {
   // Resets the chip, programs `mac`, the filters and the PHY (auto-negotiation, all modes), enables
   // receive, transmit and the interrupt. kUnavailable: the chip does not answer (BYTE_TEST) or does not
   // come out of reset; kNotFound: an unknown chip ID. After a failure the port stays without link.
-  base::Status Start(const MacAddress& mac);
+  base::Status Start(const base::MacAddress& mac);
   // The chip's ID_REV as read by Start() (0: not read).
   std::uint32_t chip_id() const { return chip_id_; }
 
-  MacAddress Mac() const override { return mac_; }
+  base::MacAddress Mac() const override { return mac_; }
   std::size_t PortCount() const override { return 1; }
   LinkState Link(PortId port) const override;
   PortCounters Counters(PortId port) const override;
   base::Result<ReceivedFrame> Receive(std::span<std::uint8_t> buffer) override;
   base::Status Transmit(PortId port, std::span<const std::uint8_t> frame) override;
-  base::Status JoinMulticast(const MacAddress& group) override;
-  base::Status LeaveMulticast(const MacAddress& group) override;
+  base::Status JoinMulticast(const base::MacAddress& group) override;
+  base::Status LeaveMulticast(const base::MacAddress& group) override;
 
  private:
   bool OnInterrupt() override;
@@ -61,7 +61,7 @@ class Lan9118FramePort final : public FramePort, private InterruptHandler {
   void CollectTransmitStatus();
   void DiscardWords(std::size_t words);
 
-  MacAddress mac_{};
+  base::MacAddress mac_{};
   std::uint32_t chip_id_ = 0;
   bool started_ = false;
   LinkState link_{};

@@ -2,9 +2,9 @@
 
 namespace hal::mps2 {
 
-std::uint8_t Lan9118HashIndex(const MacAddress& mac) {
+std::uint8_t Lan9118HashIndex(const base::MacAddress& mac) {
   std::uint32_t crc = 0xFFFFFFFFU;
-  for (const std::uint8_t byte : mac) {
+  for (const std::uint8_t byte : mac.octets()) {
     for (int bit = 0; bit < 8; ++bit) {
       const bool carry = ((crc >> 31) ^ (static_cast<std::uint32_t>(byte) >> bit)) & 1U;
       crc <<= 1;
@@ -14,7 +14,7 @@ std::uint8_t Lan9118HashIndex(const MacAddress& mac) {
   return static_cast<std::uint8_t>(crc >> 26);
 }
 
-void MulticastFilter::Join(const MacAddress& group) {
+void MulticastFilter::Join(const base::MacAddress& group) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (entries_[i].mac == group) {
       ++entries_[i].joins;
@@ -28,7 +28,7 @@ void MulticastFilter::Join(const MacAddress& group) {
   entries_[count_++] = Entry{group, 1};
 }
 
-base::Status MulticastFilter::Leave(const MacAddress& group) {
+base::Status MulticastFilter::Leave(const base::MacAddress& group) {
   for (std::size_t i = 0; i < count_; ++i) {
     if (entries_[i].mac != group) continue;
     if (--entries_[i].joins == 0) entries_[i] = entries_[--count_];

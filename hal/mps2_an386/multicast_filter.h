@@ -18,15 +18,15 @@
 
 namespace hal::mps2 {
 
-std::uint8_t Lan9118HashIndex(const MacAddress& mac);
+std::uint8_t Lan9118HashIndex(const base::MacAddress& mac);
 
 class MulticastFilter {
  public:
   static constexpr std::size_t kCapacity = 16;
 
-  void Join(const MacAddress& group);
+  void Join(const base::MacAddress& group);
   // kNotFound: the group was not joined.
-  base::Status Leave(const MacAddress& group);
+  base::Status Leave(const base::MacAddress& group);
 
   // Bit i set: hash index i passes (bits 63..32 go to MAC_HASHH, 31..0 to MAC_HASHL).
   std::uint64_t HashTable() const;
@@ -35,7 +35,7 @@ class MulticastFilter {
 
  private:
   struct Entry {
-    MacAddress mac{};
+    base::MacAddress mac{};
     std::uint32_t joins = 0;
   };
   std::array<Entry, kCapacity> entries_{};

@@ -30,20 +30,20 @@ TextLine& TextLine::Hex(std::uint8_t byte) {
   return Text(std::string_view(pair, 2));
 }
 
-TextLine& TextLine::Ipv4(std::uint32_t host_order) {
-  for (int shift = 24; shift >= 0; shift -= 8) {
-    Unsigned((host_order >> shift) & 0xFF);
-    if (shift != 0) Text(".");
+TextLine& TextLine::Octets(std::span<const std::uint8_t> octets, std::string_view separator, bool hex) {
+  for (std::size_t i = 0; i < octets.size(); ++i) {
+    if (i != 0) Text(separator);
+    if (hex) {
+      Hex(octets[i]);
+    } else {
+      Unsigned(octets[i]);
+    }
   }
   return *this;
 }
 
-TextLine& TextLine::Mac(const MacAddress& mac) {
-  for (std::size_t i = 0; i < mac.size(); ++i) {
-    if (i != 0) Text(":");
-    Hex(mac[i]);
-  }
-  return *this;
-}
+TextLine& TextLine::Ipv4(const base::Ipv4Address& address) { return Octets(address.octets(), ".", false); }
+
+TextLine& TextLine::Mac(const base::MacAddress& mac) { return Octets(mac.octets(), ":", true); }
 
 }  // namespace hal

@@ -17,11 +17,11 @@ class FakeFramePort final : public FramePort {
     std::vector<std::uint8_t> bytes;
   };
 
-  explicit FakeFramePort(MacAddress mac, std::size_t ports = 1) : mac_(mac), ports_(ports) {
+  explicit FakeFramePort(base::MacAddress mac, std::size_t ports = 1) : mac_(mac), ports_(ports) {
     for (auto& link : links_) link = LinkState{true, LinkSpeed::k100Mbps, true, true};
   }
 
-  MacAddress Mac() const override { return mac_; }
+  base::MacAddress Mac() const override { return mac_; }
   std::size_t PortCount() const override { return ports_; }
   LinkState Link(PortId port) const override { return links_[PortIndex(port)]; }
   PortCounters Counters(PortId) const override { return {}; }
@@ -41,18 +41,18 @@ class FakeFramePort final : public FramePort {
     return base::OkStatus();
   }
 
-  base::Status JoinMulticast(const MacAddress& group) override {
+  base::Status JoinMulticast(const base::MacAddress& group) override {
     joined_.push_back(group);
     return base::OkStatus();
   }
-  base::Status LeaveMulticast(const MacAddress& group) override {
+  base::Status LeaveMulticast(const base::MacAddress& group) override {
     const auto found = std::find(joined_.begin(), joined_.end(), group);
     if (found == joined_.end()) return base::NotFound();
     joined_.erase(found);
     return base::OkStatus();
   }
   // The multicast groups joined and not left, in the order joined (a group joined twice is there twice).
-  const std::vector<MacAddress>& joined() const { return joined_; }
+  const std::vector<base::MacAddress>& joined() const { return joined_; }
 
   void Inject(std::vector<std::uint8_t> frame, PortId port = PortId::kLeft) {
     inbox_.push_back(Sent{port, std::move(frame)});
@@ -63,12 +63,12 @@ class FakeFramePort final : public FramePort {
   std::size_t pending() const { return inbox_.size(); }
 
  private:
-  MacAddress mac_;
+  base::MacAddress mac_;
   std::size_t ports_;
   LinkState links_[kMaxPorts];
   std::deque<Sent> inbox_;
   std::vector<Sent> sent_;
-  std::vector<MacAddress> joined_;
+  std::vector<base::MacAddress> joined_;
 };
 
 }  // namespace hal::test

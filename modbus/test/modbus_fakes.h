@@ -158,8 +158,8 @@ class FakeLossSupervision final : public drive_link::LossSupervision {
   bool lost_ = false;
 };
 
-inline constexpr Ipv4Address kClientAddress{192, 168, 1, 30};
-inline constexpr Ipv4Address kOtherAddress{192, 168, 1, 31};
+inline constexpr base::Ipv4Address kClientAddress{192, 168, 1, 30};
+inline constexpr base::Ipv4Address kOtherAddress{192, 168, 1, 31};
 
 // A server with fakes behind it and a fake time.
 struct ServerHarness {
@@ -167,7 +167,7 @@ struct ServerHarness {
     drive.rules.scanner = &scanner;
   }
 
-  ConnectionId Connect(const Ipv4Address& peer = kClientAddress) {
+  ConnectionId Connect(const base::Ipv4Address& peer = kClientAddress) {
     const base::Result<ConnectionId> id = server.Open(peer, now);
     return id.ok() ? *id : ConnectionId{0xFF};
   }

@@ -19,10 +19,10 @@ using hal::Micros;
 constexpr Micros kMs = hal::kMicrosPerMilli;
 constexpr Micros kS = hal::kMicrosPerSecond;
 // Documentation values: MAC 00-00-5E-00-53-xx (RFC 7042), addresses from 192.0.2.0/24 (RFC 5737).
-constexpr MacAddress kOwnMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};
-constexpr MacAddress kOtherMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x99};
-constexpr Ipv4Address kAddress = 0xC000020A;  // 192.0.2.10
-constexpr Ipv4Address kOtherAddress = 0xC0000214;  // 192.0.2.20
+constexpr base::MacAddress kOwnMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};
+constexpr base::MacAddress kOtherMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x99};
+constexpr base::Ipv4Address kAddress(0xC000020A);  // 192.0.2.10
+constexpr base::Ipv4Address kOtherAddress(0xC0000214);  // 192.0.2.20
 
 using hal::test::QueuedRandom;
 
@@ -64,7 +64,7 @@ Bytes Frame(const ArpPacket& packet) {
 }
 
 // A gratuitous ARP of the other host claiming `ip`.
-Bytes OtherAnnounces(Ipv4Address ip) { return Frame(ArpAnnouncement(kOtherMac, ip)); }
+Bytes OtherAnnounces(base::Ipv4Address ip) { return Frame(ArpAnnouncement(kOtherMac, ip)); }
 
 TEST(AcdArpTest, ProbeAndAnnouncementBytes) {
   EXPECT_EQ(Frame(ArpProbe(kOwnMac, kAddress)), kProbeBytes);
@@ -80,7 +80,7 @@ TEST(AcdArpTest, ParsesAPaddedReply) {
   EXPECT_EQ(parsed->sender_mac, kOtherMac);
   EXPECT_EQ(parsed->sender_ip, kAddress);
   EXPECT_EQ(parsed->target_mac, kOwnMac);
-  EXPECT_EQ(parsed->target_ip, 0U);
+  EXPECT_EQ(parsed->target_ip, base::Ipv4Address(0U));
   // Round trip of the 42 bytes.
   EXPECT_EQ(Frame(*parsed), Bytes(kConflictingReply.begin(), kConflictingReply.begin() + 42));
 }

@@ -17,7 +17,7 @@ using Bytes = std::vector<std::uint8_t>;
 using hal::Micros;
 
 constexpr Micros kS = hal::kMicrosPerSecond;
-constexpr MacAddress kMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};  // RFC 7042 documentation MAC
+constexpr base::MacAddress kMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};  // RFC 7042 documentation MAC
 constexpr std::uint32_t kXid = 0x12345678;
 
 using hal::test::QueuedRandom;
@@ -138,10 +138,10 @@ TEST_F(BootpFixture, ReplyGivesAddressMaskAndFirstRouter) {
   EXPECT_EQ(client.OnReply(Reply()), base::OkStatus());
   EXPECT_EQ(client.state(), BootpClient::State::kBound);
   const BootReply& lease = client.Lease();
-  EXPECT_EQ(lease.your_address, 0xC000020AU);
-  EXPECT_EQ(lease.server_address, 0xC0000201U);
-  EXPECT_EQ(lease.subnet_mask, std::optional<Ipv4Address>(0xFFFFFF00U));
-  EXPECT_EQ(lease.router, std::optional<Ipv4Address>(0xC0000201U));
+  EXPECT_EQ(lease.your_address, base::Ipv4Address(0xC000020AU));
+  EXPECT_EQ(lease.server_address, base::Ipv4Address(0xC0000201U));
+  EXPECT_EQ(lease.subnet_mask, std::optional<base::Ipv4Address>(0xFFFFFF00U));
+  EXPECT_EQ(lease.router, std::optional<base::Ipv4Address>(0xC0000201U));
   // A second answer (a second server) no longer counts.
   EXPECT_EQ(client.OnReply(Reply()), base::FailedPrecondition());
 }
@@ -183,7 +183,7 @@ TEST_F(BootpFixture, AReplyWithoutVendorInformationGivesTheAddressOnly) {
   // Only the fixed part; then a vendor area in some other format (no cookie).
   const base::Result<BootReply> bare = ParseBootReply(std::span(reply).first(kBootpFixedSize), kXid, kMac);
   ASSERT_TRUE(bare.ok());
-  EXPECT_EQ(bare->your_address, 0xC000020AU);
+  EXPECT_EQ(bare->your_address, base::Ipv4Address(0xC000020AU));
   EXPECT_FALSE(bare->subnet_mask.has_value());
   EXPECT_FALSE(bare->router.has_value());
   Bytes other = reply;
@@ -211,7 +211,7 @@ TEST_F(BootpFixture, ALongerReplyFromADhcpServerIsRead) {
   const Bytes reply = Reply(options);
   EXPECT_GT(reply.size(), 300U);
   ASSERT_TRUE(client.OnReply(reply).ok());
-  EXPECT_EQ(client.Lease().subnet_mask, std::optional<Ipv4Address>(0xFFFF0000U));
+  EXPECT_EQ(client.Lease().subnet_mask, std::optional<base::Ipv4Address>(0xFFFF0000U));
 }
 
 TEST_F(BootpFixture, StopIgnoresALateReply) {
@@ -223,18 +223,18 @@ TEST_F(BootpFixture, StopIgnoresALateReply) {
 }
 
 TEST(BootpClientTest, AddressAndMaskChecks) {
-  EXPECT_TRUE(IsUsableUnicast(0x0A000001));   // 10.0.0.1
-  EXPECT_TRUE(IsUsableUnicast(0xDFFFFFFE));   // 223.255.255.254
-  EXPECT_FALSE(IsUsableUnicast(0x00000000));
-  EXPECT_FALSE(IsUsableUnicast(0x7F000001));
-  EXPECT_FALSE(IsUsableUnicast(0xE0000001));
-  EXPECT_FALSE(IsUsableUnicast(0xFFFFFFFF));
-  EXPECT_TRUE(IsContiguousMask(0xFFFFFF00));
-  EXPECT_TRUE(IsContiguousMask(0xFFFFFFFF));
-  EXPECT_TRUE(IsContiguousMask(0x80000000));
-  EXPECT_FALSE(IsContiguousMask(0x00000000));
-  EXPECT_FALSE(IsContiguousMask(0xFFFF0F00));
-  EXPECT_FALSE(IsContiguousMask(0x00FFFFFF));
+  EXPECT_TRUE(IsUsableUnicast(base::Ipv4Address(0x0A000001)));   // 10.0.0.1
+  EXPECT_TRUE(IsUsableUnicast(base::Ipv4Address(0xDFFFFFFE)));   // 223.255.255.254
+  EXPECT_FALSE(IsUsableUnicast(base::Ipv4Address(0x00000000)));
+  EXPECT_FALSE(IsUsableUnicast(base::Ipv4Address(0x7F000001)));
+  EXPECT_FALSE(IsUsableUnicast(base::Ipv4Address(0xE0000001)));
+  EXPECT_FALSE(IsUsableUnicast(base::Ipv4Address(0xFFFFFFFF)));
+  EXPECT_TRUE(IsContiguousMask(base::Ipv4Address(0xFFFFFF00)));
+  EXPECT_TRUE(IsContiguousMask(base::Ipv4Address(0xFFFFFFFF)));
+  EXPECT_TRUE(IsContiguousMask(base::Ipv4Address(0x80000000)));
+  EXPECT_FALSE(IsContiguousMask(base::Ipv4Address(0x00000000)));
+  EXPECT_FALSE(IsContiguousMask(base::Ipv4Address(0xFFFF0F00)));
+  EXPECT_FALSE(IsContiguousMask(base::Ipv4Address(0x00FFFFFF)));
 }
 
 // ---- The options area ---------------------------------------------------------------------------
@@ -300,7 +300,7 @@ TEST(DhcpOptionsTest, FirstInstanceWinsAndLengthsAreChecked) {
   const base::Result<IpOptions> twice =
       ParseIpOptions(Bytes{0x01, 0x04, 0xFF, 0x00, 0x00, 0x00, 0x01, 0x04, 0xFF, 0xFF, 0x00, 0x00, 0xFF});
   ASSERT_TRUE(twice.ok());
-  EXPECT_EQ(twice->subnet_mask, std::optional<Ipv4Address>(0xFF000000U));
+  EXPECT_EQ(twice->subnet_mask, std::optional<base::Ipv4Address>(0xFF000000U));
   EXPECT_EQ(ParseIpOptions(Bytes{0x01, 0x05, 0, 0, 0, 0, 0}).status(), base::InvalidArgument());
   EXPECT_EQ(ParseIpOptions(Bytes{0x03, 0x00}).status(), base::InvalidArgument());
   EXPECT_EQ(ParseIpOptions(Bytes{0x03, 0x05, 1, 2, 3, 4, 5}).status(), base::InvalidArgument());

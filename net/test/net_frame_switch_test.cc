@@ -10,16 +10,16 @@
 namespace net {
 namespace {
 
-constexpr MacAddress kCard = {0x02, 0x00, 0x00, 0x00, 0x00, 0x01};
-constexpr MacAddress kPlc = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x10};    // on port L (0)
-constexpr MacAddress kDrive2 = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x20};  // on port R (1)
-constexpr MacAddress kIgmpGroup = {0x01, 0x00, 0x5E, 0x40, 0x01, 0x02};
-constexpr MacAddress kLldp = {0x01, 0x80, 0xC2, 0x00, 0x00, 0x0E};
+constexpr base::MacAddress kCard = {0x02, 0x00, 0x00, 0x00, 0x00, 0x01};
+constexpr base::MacAddress kPlc = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x10};    // on port L (0)
+constexpr base::MacAddress kDrive2 = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x20};  // on port R (1)
+constexpr base::MacAddress kIgmpGroup = {0x01, 0x00, 0x5E, 0x40, 0x01, 0x02};
+constexpr base::MacAddress kLldp = {0x01, 0x80, 0xC2, 0x00, 0x00, 0x0E};
 
 constexpr std::size_t kL = 0;
 constexpr std::size_t kR = 1;
 
-std::vector<std::uint8_t> Frame(const MacAddress& destination, const MacAddress& source) {
+std::vector<std::uint8_t> Frame(const base::MacAddress& destination, const base::MacAddress& source) {
   std::vector<std::uint8_t> frame(60, 0);
   std::copy(destination.begin(), destination.end(), frame.begin());
   std::copy(source.begin(), source.end(), frame.begin() + 6);
@@ -37,7 +37,7 @@ TEST(FrameSwitchTest, ForTheCardOnlyTheCard) {
 
 TEST(FrameSwitchTest, BroadcastAndMulticastReachTheCardAndTheOtherPort) {
   FrameSwitch sw(kCard, 2);
-  EXPECT_EQ(sw.Ingress(Frame(kBroadcastMac, kPlc), kL), Delivery(true, false, true));
+  EXPECT_EQ(sw.Ingress(Frame(base::kBroadcastMac, kPlc), kL), Delivery(true, false, true));
   EXPECT_EQ(sw.Ingress(Frame(kIgmpGroup, kDrive2), kR), Delivery(true, true, false));
 }
 
@@ -54,11 +54,11 @@ TEST(FrameSwitchTest, UnknownUnicastPassesToTheOtherPortNotTheCard) {
 
 TEST(FrameSwitchTest, AStationLearnedOnTheIngressSideIsFiltered) {
   FrameSwitch sw(kCard, 2);
-  constexpr MacAddress kPlc2 = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x11};
-  sw.Ingress(Frame(kBroadcastMac, kPlc2), kL);
+  constexpr base::MacAddress kPlc2 = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x11};
+  sw.Ingress(Frame(base::kBroadcastMac, kPlc2), kL);
   EXPECT_EQ(sw.Ingress(Frame(kPlc2, kPlc), kL), Delivery(false, false, false));
   // Learned on the other side: forwarded there.
-  sw.Ingress(Frame(kBroadcastMac, kDrive2), kR);
+  sw.Ingress(Frame(base::kBroadcastMac, kDrive2), kR);
   EXPECT_EQ(sw.Ingress(Frame(kDrive2, kPlc), kL), Delivery(false, false, true));
 }
 
@@ -70,7 +70,7 @@ TEST(FrameSwitchTest, EgressGoesWhereTheDestinationWasLearnedElseEverywhere) {
   sw.Ingress(Frame(kCard, kDrive2), kR);
   EXPECT_EQ(sw.Egress(Frame(kPlc, kCard)), (Ports{true, false}));
   EXPECT_EQ(sw.Egress(Frame(kDrive2, kCard)), (Ports{false, true}));
-  EXPECT_EQ(sw.Egress(Frame(kBroadcastMac, kCard)), (Ports{true, true}));
+  EXPECT_EQ(sw.Egress(Frame(base::kBroadcastMac, kCard)), (Ports{true, true}));
   // The PLC moves to port R: its next frame re-learns it.
   sw.Ingress(Frame(kCard, kPlc), kR);
   EXPECT_EQ(sw.Egress(Frame(kPlc, kCard)), (Ports{false, true}));
@@ -78,8 +78,8 @@ TEST(FrameSwitchTest, EgressGoesWhereTheDestinationWasLearnedElseEverywhere) {
 
 TEST(FrameSwitchTest, OwnAndGroupSourcesAreNeverLearned) {
   FrameSwitch sw(kCard, 2);
-  sw.Ingress(Frame(kBroadcastMac, kCard), kL);       // our broadcast reflected
-  sw.Ingress(Frame(kBroadcastMac, kIgmpGroup), kL);  // an invalid group source
+  sw.Ingress(Frame(base::kBroadcastMac, kCard), kL);       // our broadcast reflected
+  sw.Ingress(Frame(base::kBroadcastMac, kIgmpGroup), kL);  // an invalid group source
   EXPECT_EQ(sw.learned(), 0U);
   EXPECT_EQ(sw.PortOf(kCard), kSwitchPorts);
 }
@@ -97,7 +97,7 @@ TEST(FrameSwitchTest, LinkDownForgetsThatPortsStations) {
 TEST(FrameSwitchTest, AFullTableReplacesItsOldestEntry) {
   FrameSwitch sw(kCard, 2);
   for (std::size_t i = 0; i < FrameSwitch::kCapacity + 1; ++i) {
-    const MacAddress station = {0x00, 0x00, 0x5E, 0x01, static_cast<std::uint8_t>(i >> 8),
+    const base::MacAddress station = {0x00, 0x00, 0x5E, 0x01, static_cast<std::uint8_t>(i >> 8),
                                 static_cast<std::uint8_t>(i)};
     sw.Ingress(Frame(kCard, station), i % 2);
   }
@@ -109,7 +109,7 @@ TEST(FrameSwitchTest, AFullTableReplacesItsOldestEntry) {
 
 TEST(FrameSwitchTest, OnePortCardNeverForwardsAndRuntsGoNowhere) {
   FrameSwitch sw(kCard, 1);
-  EXPECT_EQ(sw.Ingress(Frame(kBroadcastMac, kPlc), kL), Delivery(true, false, false));
+  EXPECT_EQ(sw.Ingress(Frame(base::kBroadcastMac, kPlc), kL), Delivery(true, false, false));
   EXPECT_EQ(sw.Ingress(Frame(kDrive2, kPlc), kL), Delivery(false, false, false));
   const std::vector<std::uint8_t> runt(13, 0xFF);
   EXPECT_EQ(sw.Ingress(runt, kL), Delivery(false, false, false));

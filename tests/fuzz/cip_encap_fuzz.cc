@@ -40,7 +40,7 @@ void FuzzTcp(std::span<const std::uint8_t> input) {
   cip::test::FakeCard card;
   cip::EncapsulationServer& server = card.cip.encapsulation();
   hal::Micros now = 1;
-  cip::TcpConnectionId id = server.OpenTcpConnection(cip::Ipv4Endpoint{0x0A000202, 50000}, now).value();
+  cip::TcpConnectionId id = server.OpenTcpConnection(cip::Ipv4Endpoint{base::Ipv4Address(0x0A000202), 50000}, now).value();
   while (!input.empty()) {
     const std::size_t length = input[0];
     input = input.subspan(1);
@@ -50,12 +50,12 @@ void FuzzTcp(std::span<const std::uint8_t> input) {
       while (server.TakeExpiredConnection(now, expired)) server.CloseTcpConnection(expired);
       cip::DueDatagram due;
       while (server.TakeDueDatagram(now, due)) CheckReply(due.bytes);
-      if (server.connection_count() == 0) id = server.OpenTcpConnection(cip::Ipv4Endpoint{1, 2}, now).value();
+      if (server.connection_count() == 0) id = server.OpenTcpConnection(cip::Ipv4Endpoint{base::Ipv4Address(1), 2}, now).value();
       continue;
     }
     if (length == 0xFF) {
       server.CloseTcpConnection(id);
-      id = server.OpenTcpConnection(cip::Ipv4Endpoint{0x0A000203, 50001}, now).value();
+      id = server.OpenTcpConnection(cip::Ipv4Endpoint{base::Ipv4Address(0x0A000203), 50001}, now).value();
       continue;
     }
     std::span<const std::uint8_t> chunk = input.first(length < input.size() ? length : input.size());
@@ -68,7 +68,7 @@ void FuzzTcp(std::span<const std::uint8_t> input) {
       Require(server.session_count() <= cip::kMaxSessions);
       if (step.close) {
         server.CloseTcpConnection(id);
-        id = server.OpenTcpConnection(cip::Ipv4Endpoint{0x0A000204, 50002}, now).value();
+        id = server.OpenTcpConnection(cip::Ipv4Endpoint{base::Ipv4Address(0x0A000204), 50002}, now).value();
         break;
       }
     }
@@ -79,7 +79,7 @@ void FuzzUdp(std::span<const std::uint8_t> input) {
   if (input.empty()) return;
   cip::test::FakeCard card;
   cip::EncapsulationServer& server = card.cip.encapsulation();
-  const cip::UdpSource source{cip::Ipv4Endpoint{0x0A000202, 44818}, (input[0] & 1) != 0};
+  const cip::UdpSource source{cip::Ipv4Endpoint{base::Ipv4Address(0x0A000202), 44818}, (input[0] & 1) != 0};
   const cip::UdpDecision decision = server.OnUdpDatagram(input.subspan(1), source, 1);
   CheckReply(decision.reply);
   Require(decision.action != cip::UdpDecision::Action::kSendNow || !decision.reply.empty());
@@ -96,11 +96,11 @@ void FuzzCpf(std::span<const std::uint8_t> input) {
   const base::Result<cip::CpfPacket> packet = cip::DecodeCpf(input);
   if (packet.ok()) {
     std::vector<std::uint8_t> buffer(input.size() + 8);
-    cip::ByteWriter out(buffer);
-    out.U16(static_cast<std::uint16_t>(packet->count));
+    base::ByteWriter out(buffer);
+    out.U16Le(static_cast<std::uint16_t>(packet->count));
     for (std::size_t i = 0; i < packet->count; ++i) {
-      out.U16(packet->items[i].type);
-      out.U16(static_cast<std::uint16_t>(packet->items[i].data.size()));
+      out.U16Le(packet->items[i].type);
+      out.U16Le(static_cast<std::uint16_t>(packet->items[i].data.size()));
       out.Bytes(packet->items[i].data);
     }
     Require(out.ok() && out.size() == input.size());

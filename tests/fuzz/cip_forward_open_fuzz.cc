@@ -48,7 +48,7 @@ void CheckDecoders(std::span<const std::uint8_t> input) {
       Require(fixed + open.request.connection_path.size() == input.size());
       // Round trip.
       std::vector<std::uint8_t> again(input.size() + 8);
-      cip::ByteWriter out(again);
+      base::ByteWriter out(again);
       cip::EncodeForwardOpen(open.request, out);
       Require(out.ok());
       const cip::Decoded<cip::ForwardOpenRequest> reread = cip::DecodeForwardOpen(out.written(), large);

@@ -38,7 +38,7 @@ void CheckPath(std::span<const std::uint8_t> path) {
   const base::Result<cip::ApplicationPath> decoded = cip::DecodeApplicationPath(path);
   if (!decoded.ok()) return;
   std::array<std::uint8_t, 32> buffer{};
-  cip::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   cip::EncodeLogicalSegment(cip::SegmentKind::kClass, decoded->class_id, out);
   cip::EncodeLogicalSegment(cip::SegmentKind::kInstance, decoded->instance, out);
   if (decoded->attribute) cip::EncodeLogicalSegment(cip::SegmentKind::kAttribute, *decoded->attribute, out);

@@ -155,7 +155,7 @@ class Run {
   }
 
   modbus::test::ServerHarness h_;
-  std::array<modbus::Ipv4Address, 2> peers_{};
+  std::array<base::Ipv4Address, 2> peers_{};
   std::array<Client, 2> clients_{};
 };
 

@@ -21,8 +21,8 @@ void Require(bool condition) {
   if (!condition) __builtin_trap();
 }
 
-constexpr net::MacAddress kOwnMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};
-constexpr net::Ipv4Address kAddress = 0xC000020A;
+constexpr base::MacAddress kOwnMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};
+constexpr base::Ipv4Address kAddress = 0xC000020A;
 
 class CountingRandom final : public hal::RandomSource {
  public:
@@ -40,9 +40,9 @@ class CheckingSink final : public net::ArpSink {
   void SendArp(std::span<const std::uint8_t, net::kArpFrameSize> frame) override {
     const base::Result<net::ArpPacket> packet = net::ParseArpFrame(frame);
     Require(packet.ok());
-    Require(packet->destination == net::kBroadcastMac && packet->source == kOwnMac);
+    Require(packet->destination == base::kBroadcastMac && packet->source == kOwnMac);
     Require(packet->operation == net::ArpOperation::kRequest && packet->sender_mac == kOwnMac);
-    Require(packet->target_mac == net::kZeroMac && packet->target_ip == kAddress);
+    Require(packet->target_mac == base::kZeroMac && packet->target_ip == kAddress);
     Require(packet->sender_ip == 0 || packet->sender_ip == kAddress);
     // An announcement claims the address: only from a state that may use it (checked after the
     // transition, which happens before the frame is sent).

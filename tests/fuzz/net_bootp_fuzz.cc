@@ -58,7 +58,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   std::uint32_t xid = 0;
-  net::MacAddress mac{};
+  base::MacAddress mac{};
   if (size >= net::kBootpFixedSize) {
     xid = net::LoadBe32(input.subspan<4, 4>());
     mac = net::LoadMac(input.subspan<28, 6>());

@@ -6,7 +6,8 @@
 #include <cstdio>
 #include <random>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/cip_status.h"
 #include "cip/drive/drive_units.h"
 #include "cip/epath.h"
@@ -29,7 +30,7 @@ constexpr std::uint32_t kStopMillis = 1000;          // how long a stop is sent 
 
 std::vector<std::uint8_t> ConnectionPath(const Options& options) {
   std::uint8_t bytes[16];
-  cip::ByteWriter out(bytes);
+  base::ByteWriter out(bytes);
   cip::EncodeLogicalSegment(cip::SegmentKind::kClass, cip::kClassAssembly, out);
   cip::EncodeLogicalSegment(cip::SegmentKind::kInstance, 1, out);  // configuration instance 1, size 0
   cip::EncodeLogicalSegment(cip::SegmentKind::kConnectionPoint, options.output_instance, out);
@@ -42,7 +43,7 @@ template <typename Request, typename Encoder>
 CipReply ConnectionManagerRequest(EipSession& session, std::uint8_t service, const char* name,
                                   const Request& request, Encoder encode) {
   std::vector<std::uint8_t> data(128);
-  cip::ByteWriter out(data);
+  base::ByteWriter out(data);
   encode(request, out);
   const CipReply reply = session.Request(service, {cip::kClassConnectionManager, 1, std::nullopt}, out.written());
   if (!reply.ok()) Fail(kExitRefused, std::string("io: ") + name + " refused by the card: " + FormatCipStatus(reply));
@@ -73,10 +74,10 @@ OpenConnection ForwardOpen(EipSession& session, const Options& options, const st
   request.connection_path = path;
   const CipReply reply =
       ConnectionManagerRequest(session, cip::kServiceForwardOpen, "Forward_Open", request, cip::EncodeForwardOpen);
-  cip::ByteReader in(reply.data);
+  base::ByteReader in(reply.data);
   OpenConnection open;
-  open.o_to_t_id = in.U32();
-  open.t_to_o_id = in.U32();
+  open.o_to_t_id = in.U32Le();
+  open.t_to_o_id = in.U32Le();
   open.triad = triad;
   if (!in.ok()) Fail(kExitUnreachable, "io: the Forward_Open reply does not decode");
   return open;

@@ -1,6 +1,7 @@
 #include "drive_access.h"
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/cip_status.h"
 #include "cip/drive/parameter_object.h"
 #include "failure.h"

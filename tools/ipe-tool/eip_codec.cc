@@ -2,7 +2,8 @@
 
 #include <cstdio>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/cip_status.h"
 #include "cip/cpf.h"
 #include "cip/drive/parameter_object.h"
@@ -14,11 +15,11 @@ namespace {
 
 constexpr std::size_t kScratch = 600;
 
-Bytes Finish(const cip::ByteWriter& out) { return Bytes(out.written().begin(), out.written().end()); }
+Bytes Finish(const base::ByteWriter& out) { return Bytes(out.written().begin(), out.written().end()); }
 
 Bytes Encapsulate(cip::EncapCommand command, std::uint32_t session, std::span<const std::uint8_t> data) {
   std::vector<std::uint8_t> buffer(cip::kEncapsulationHeaderSize + data.size());
-  cip::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   cip::EncapsulationHeader header;
   header.command = static_cast<std::uint16_t>(command);
   header.length = static_cast<std::uint16_t>(data.size());
@@ -51,21 +52,21 @@ const char* GeneralStatusName(std::uint8_t general) {
   }
 }
 
-void ReadShortString(cip::ByteReader& in, cip::FixedString<32>& text) {
+void ReadShortString(base::ByteReader& in, cip::FixedString<32>& text) {
   const std::uint8_t length = in.U8();
   const std::span<const std::uint8_t> chars = in.Bytes(length);
   if (!text.Assign(chars)) (void)text.Assign(chars.first(cip::FixedString<32>::kCapacity));
 }
 
 // Identity attributes 1-7 in their wire order (Get_Attributes_All and the ListIdentity item alike).
-void ReadIdentityFields(cip::ByteReader& in, cip::IdentityItem& identity) {
-  identity.vendor_id = in.U16();
-  identity.device_type = in.U16();
-  identity.product_code = in.U16();
+void ReadIdentityFields(base::ByteReader& in, cip::IdentityItem& identity) {
+  identity.vendor_id = in.U16Le();
+  identity.device_type = in.U16Le();
+  identity.product_code = in.U16Le();
   identity.major_revision = in.U8();
   identity.minor_revision = in.U8();
-  identity.status = in.U16();
-  identity.serial_number = in.U32();
+  identity.status = in.U16Le();
+  identity.serial_number = in.U32Le();
   ReadShortString(in, identity.product_name);
 }
 
@@ -82,21 +83,21 @@ ParameterAddress ParameterAddressOf(std::uint16_t number) {
 
 Bytes EncodeCipRequest(std::uint8_t service, const CipPath& path, std::span<const std::uint8_t> data) {
   std::uint8_t path_bytes[16];
-  cip::ByteWriter path_out(path_bytes);
+  base::ByteWriter path_out(path_bytes);
   cip::EncodeLogicalSegment(cip::SegmentKind::kClass, path.class_id, path_out);
   cip::EncodeLogicalSegment(cip::SegmentKind::kInstance, path.instance, path_out);
   if (path.attribute) cip::EncodeLogicalSegment(cip::SegmentKind::kAttribute, *path.attribute, path_out);
   std::vector<std::uint8_t> buffer(kScratch + data.size());
-  cip::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   cip::EncodeMessageRouterRequest({service, path_out.written(), data}, out);
   return Finish(out);
 }
 
 Bytes EncodeRegisterSession() {
   std::uint8_t data[4];
-  cip::ByteWriter out(data);
-  out.U16(cip::kEncapsulationProtocolVersion);
-  out.U16(0);  // options
+  base::ByteWriter out(data);
+  out.U16Le(cip::kEncapsulationProtocolVersion);
+  out.U16Le(0);  // options
   return Encapsulate(cip::EncapCommand::kRegisterSession, 0, out.written());
 }
 
@@ -115,10 +116,10 @@ Bytes EncodeListIdentityRequest() {
 
 Bytes EncodeSendRRData(std::uint32_t session, std::span<const std::uint8_t> cip_request) {
   std::vector<std::uint8_t> buffer(kScratch + cip_request.size());
-  cip::ByteWriter out(buffer);
-  out.U32(0);  // interface handle: CIP
-  out.U16(0);  // timeout: the target ignores it
-  out.U16(2);  // item count
+  base::ByteWriter out(buffer);
+  out.U32Le(0);  // interface handle: CIP
+  out.U16Le(0);  // timeout: the target ignores it
+  out.U16Le(2);  // item count
   cip::FinishCpfItem(out, cip::BeginCpfItem(out, cip::CpfItemType::kNullAddress));
   const std::size_t at = cip::BeginCpfItem(out, cip::CpfItemType::kUnconnectedData);
   out.Bytes(cip_request);
@@ -136,8 +137,8 @@ std::optional<CipReply> DecodeSendRRDataReply(std::span<const std::uint8_t> comm
   CipReply out;
   out.service = reply.value().service;
   out.general = static_cast<std::uint8_t>(reply.value().general);
-  cip::ByteReader words(reply.value().additional_status);
-  while (words.remaining() >= 2) out.additional.push_back(words.U16());
+  base::ByteReader words(reply.value().additional_status);
+  while (words.remaining() >= 2) out.additional.push_back(words.U16Le());
   out.data.assign(reply.value().data.begin(), reply.value().data.end());
   return out;
 }
@@ -154,13 +155,13 @@ std::string FormatCipStatus(const CipReply& reply) {
 }
 
 std::optional<cip::IdentityItem> DecodeListIdentityReply(std::span<const std::uint8_t> command_data) {
-  cip::ByteReader in(command_data);
-  if (in.U16() < 1) return std::nullopt;  // item count
-  if (in.U16() != cip::kItemListIdentity) return std::nullopt;
-  const std::uint16_t length = in.U16();
-  cip::ByteReader item = in.Take(length);
+  base::ByteReader in(command_data);
+  if (in.U16Le() < 1) return std::nullopt;  // item count
+  if (in.U16Le() != cip::kItemListIdentity) return std::nullopt;
+  const std::uint16_t length = in.U16Le();
+  base::ByteReader item = in.Take(length);
   cip::IdentityItem identity;
-  (void)item.U16();  // encapsulation protocol version
+  (void)item.U16Le();  // encapsulation protocol version
   identity.socket_address = cip::DecodeSocketAddress(item);
   ReadIdentityFields(item, identity);
   identity.state = item.U8();
@@ -169,7 +170,7 @@ std::optional<cip::IdentityItem> DecodeListIdentityReply(std::span<const std::ui
 }
 
 std::optional<cip::IdentityItem> DecodeIdentityAttributes(std::span<const std::uint8_t> data) {
-  cip::ByteReader in(data);
+  base::ByteReader in(data);
   cip::IdentityItem identity;
   ReadIdentityFields(in, identity);
   if (!in.ok()) return std::nullopt;

@@ -1,6 +1,7 @@
 #include "file_transfer.h"
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "eip_codec.h"
 #include "failure.h"
 
@@ -11,16 +12,16 @@ std::vector<std::uint8_t> EncodeInitiateUpload(std::uint8_t max_transfer_size) {
 std::vector<std::uint8_t> EncodeUploadTransfer(std::uint8_t transfer_number) { return {transfer_number}; }
 
 std::optional<InitiateUploadReply> DecodeInitiateUploadReply(std::span<const std::uint8_t> data) {
-  cip::ByteReader in(data);
+  base::ByteReader in(data);
   InitiateUploadReply reply;
-  reply.file_size = in.U32();
+  reply.file_size = in.U32Le();
   reply.transfer_size = in.U8();
   if (!in.ok() || !in.empty()) return std::nullopt;
   return reply;
 }
 
 std::optional<UploadTransferReply> DecodeUploadTransferReply(std::span<const std::uint8_t> data) {
-  cip::ByteReader in(data);
+  base::ByteReader in(data);
   UploadTransferReply reply;
   reply.transfer_number = in.U8();
   const std::uint8_t type = in.U8();
@@ -30,7 +31,7 @@ std::optional<UploadTransferReply> DecodeUploadTransferReply(std::span<const std
   if (last && in.remaining() < 2) return std::nullopt;
   const std::span<const std::uint8_t> bytes = in.Bytes(in.remaining() - (last ? 2 : 0));
   reply.data.assign(bytes.begin(), bytes.end());
-  if (last) reply.checksum = in.U16();
+  if (last) reply.checksum = in.U16Le();
   if (!in.ok()) return std::nullopt;
   return reply;
 }

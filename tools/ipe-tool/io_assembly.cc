@@ -2,7 +2,8 @@
 
 #include <cstdio>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/io_connection.h"
 
 namespace ipe {
@@ -78,7 +79,7 @@ std::vector<std::uint8_t> EncodeOutputDatagram(std::uint32_t connection_id, std:
   data[0] = run ? 1 : 0;  // run/idle header: bit 0 run
   for (std::size_t i = 0; i < assembly.size(); ++i) data[4 + i] = assembly[i];
   std::vector<std::uint8_t> buffer(64 + data.size());
-  cip::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   cip::EncodeIoDatagram(connection_id, encapsulation_sequence, cip_sequence, data, out);
   return std::vector<std::uint8_t>(out.written().begin(), out.written().end());
 }

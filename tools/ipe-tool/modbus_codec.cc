@@ -2,7 +2,8 @@
 
 #include <cstdio>
 
-#include "modbus/bytes.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "modbus/mbap.h"
 #include "modbus/pdu.h"
 
@@ -10,7 +11,7 @@ namespace ipe {
 namespace {
 
 // The MBAP header of a request whose PDU is `pdu_length` bytes (the core writes it as for an answer).
-void WriteRequestHeader(modbus::ByteWriter& out, std::uint16_t transaction, std::uint8_t unit, std::size_t pdu_length) {
+void WriteRequestHeader(base::ByteWriter& out, std::uint16_t transaction, std::uint8_t unit, std::size_t pdu_length) {
   modbus::MbapHeader header;
   header.transaction_id = transaction;
   header.unit_id = unit;
@@ -20,11 +21,11 @@ void WriteRequestHeader(modbus::ByteWriter& out, std::uint16_t transaction, std:
 std::vector<std::uint8_t> Adu(std::uint16_t transaction, std::uint8_t unit, std::uint8_t function,
                               std::uint16_t first, std::uint16_t second) {
   std::vector<std::uint8_t> buffer(modbus::kMbapHeaderBytes + 5);
-  modbus::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   WriteRequestHeader(out, transaction, unit, 5);
   out.U8(function);
-  out.U16(first);
-  out.U16(second);
+  out.U16Be(first);
+  out.U16Be(second);
   return std::vector<std::uint8_t>(out.written().begin(), out.written().end());
 }
 
@@ -42,7 +43,7 @@ std::vector<std::uint8_t> EncodeWriteSingleRegister(std::uint16_t transaction, s
 
 std::vector<std::uint8_t> EncodeReadDeviceId(std::uint16_t transaction, std::uint8_t unit) {
   std::vector<std::uint8_t> buffer(modbus::kMbapHeaderBytes + 4);
-  modbus::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   WriteRequestHeader(out, transaction, unit, 4);
   out.U8(modbus::fc::kEncapsulatedInterface);
   out.U8(modbus::fc::kMeiReadDeviceId);
@@ -57,7 +58,7 @@ std::vector<DeviceIdObject> DecodeDeviceIdAnswer(std::span<const std::uint8_t> a
       frame.header.transaction_id != transaction) {
     return {};
   }
-  modbus::ByteReader in(modbus::PduOf(adu));
+  base::ByteReader in(modbus::PduOf(adu));
   if (in.U8() != modbus::fc::kEncapsulatedInterface || in.U8() != modbus::fc::kMeiReadDeviceId) return {};
   (void)in.U8();  // code
   (void)in.U8();  // conformity level
@@ -83,7 +84,7 @@ ModbusAnswer DecodeAnswer(std::span<const std::uint8_t> adu, std::uint16_t trans
       frame.header.transaction_id != transaction) {
     return answer;
   }
-  modbus::ByteReader in(modbus::PduOf(adu));
+  base::ByteReader in(modbus::PduOf(adu));
   const std::uint8_t answered = in.U8();
   if (answered == (function | modbus::fc::kExceptionBit)) {
     answer.exception = in.U8();
@@ -94,10 +95,10 @@ ModbusAnswer DecodeAnswer(std::span<const std::uint8_t> adu, std::uint16_t trans
   if (function == modbus::fc::kReadHoldingRegisters) {
     const std::uint8_t count = in.U8();
     if (count % 2 != 0 || in.remaining() != count) return answer;
-    for (std::uint8_t i = 0; i < count / 2; ++i) answer.values.push_back(in.U16());
+    for (std::uint8_t i = 0; i < count / 2; ++i) answer.values.push_back(in.U16Be());
   } else {
-    (void)in.U16();  // the address echoed
-    answer.values.push_back(in.U16());
+    (void)in.U16Be();  // the address echoed
+    answer.values.push_back(in.U16Be());
     if (in.remaining() != 0) return answer;
   }
   answer.valid = in.ok();

@@ -1,5 +1,5 @@
 // Modbus TCP requests tools/ipe sends and the answers it reads, with the project's Modbus core
-// (modbus/mbap.h framing, modbus/pdu.h function and exception codes, modbus/bytes.h). Pure functions.
+// (modbus/mbap.h framing, modbus/pdu.h function and exception codes, base/byte_reader.h). Pure functions.
 #pragma once
 
 #include <cstdint>

@@ -65,8 +65,8 @@ class AssemblyObject final : public AttributeHandler {
   std::uint32_t InstanceCount() const override { return static_cast<std::uint32_t>(count_); }
   bool HasInstanceNumber(std::uint32_t instance) const override { return Find(instance) != nullptr; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
 
  private:
   struct Entry {

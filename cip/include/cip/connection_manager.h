@@ -114,7 +114,7 @@ class ConnectionManager final : public AttributeHandler,
   ExtendedDeviceStatus IoStatus() const override;
   // Whether an exclusive owner connection consumes `point` (explicit writes to it are refused).
   bool IsOwned(std::uint32_t consumed_point) const override;
-  bool OwnedByAnotherOriginator(std::uint32_t originator_address) const override;
+  bool OwnedByAnotherOriginator(base::Ipv4Address originator_address) const override;
   // The open connections (at most out.size() of them, in table order); returns how many were written.
   std::size_t ListConnections(std::span<ConnectionInfo> out) const override;
   bool AnyOpen() const override { return ActiveConnections() > 0; }
@@ -141,8 +141,8 @@ class ConnectionManager final : public AttributeHandler,
   // AttributeHandler (class 0x06)
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
   static constexpr int kNone = -1;
@@ -153,7 +153,7 @@ class ConnectionManager final : public AttributeHandler,
     IoConnectionKind kind = IoConnectionKind::kExclusiveOwner;
     IoPoints points;
     ConnectionTriad triad;
-    std::uint32_t originator_address = 0;
+    base::Ipv4Address originator_address;
     std::uint32_t session_handle = 0;
     std::uint32_t o_to_t_id = 0;
     std::uint32_t t_to_o_id = 0;
@@ -200,9 +200,9 @@ class ConnectionManager final : public AttributeHandler,
     enum class Exhausted : std::uint8_t { kNone, kTable, kExplicit, kMulticastGroups } exhausted = Exhausted::kNone;
   };
 
-  ServiceStatus ForwardOpen(const ServiceRequest& request, ByteWriter& reply, bool large);
-  ServiceStatus ForwardClose(const ServiceRequest& request, ByteWriter& reply);
-  ServiceStatus RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad, ByteWriter& reply);
+  ServiceStatus ForwardOpen(const ServiceRequest& request, base::ByteWriter& reply, bool large);
+  ServiceStatus ForwardClose(const ServiceRequest& request, base::ByteWriter& reply);
+  ServiceStatus RejectOpen(const ConnectionFailure& failure, const ConnectionTriad& triad, base::ByteWriter& reply);
   std::optional<ConnectionFailure> Validate(const ForwardOpenRequest& request, const RequestContext& context,
                                            Opening& opening) const;
   std::optional<ConnectionFailure> ValidateIo(const ForwardOpenRequest& request, const RequestContext& context,

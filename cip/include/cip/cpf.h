@@ -12,7 +12,8 @@
 #include <span>
 
 #include "base/status.h"
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/wire_types.h"
 
 namespace cip {
@@ -77,8 +78,8 @@ base::Result<ConnectedMessage> ParseConnectedMessage(const CpfPacket& packet);
 
 // Item writing: BeginCpfItem writes the type and a zero length and returns where the length is;
 // FinishCpfItem patches it with the bytes written since.
-std::size_t BeginCpfItem(ByteWriter& out, CpfItemType type);
-void FinishCpfItem(ByteWriter& out, std::size_t length_at);
-void EncodeSockaddrItem(ByteWriter& out, CpfItemType type, const SocketAddress& address);
+std::size_t BeginCpfItem(base::ByteWriter& out, CpfItemType type);
+void FinishCpfItem(base::ByteWriter& out, std::size_t length_at);
+void EncodeSockaddrItem(base::ByteWriter& out, CpfItemType type, const SocketAddress& address);
 
 }  // namespace cip

@@ -10,7 +10,8 @@
 #include <span>
 
 #include "base/status.h"
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/wire_types.h"
 
 namespace cip {
@@ -55,7 +56,7 @@ struct EncapsulationHeader {
 // Decodes the first 24 bytes of `bytes` (anything after them is the caller's); kOutOfRange when fewer
 // than 24 bytes are given.
 base::Result<EncapsulationHeader> DecodeEncapsulationHeader(std::span<const std::uint8_t> bytes);
-void EncodeEncapsulationHeader(const EncapsulationHeader& header, ByteWriter& out);
+void EncodeEncapsulationHeader(const EncapsulationHeader& header, base::ByteWriter& out);
 
 // The reply header for a request: command, session handle and sender context echoed, options 0.
 // `length` is patched by whoever writes the reply data.
@@ -81,9 +82,9 @@ struct IdentityItem {
 };
 
 // The command-specific data of each discovery reply: an item count and the items.
-void EncodeListIdentityData(const IdentityItem& identity, ByteWriter& out);
-void EncodeListServicesData(ByteWriter& out);
-void EncodeListInterfacesData(ByteWriter& out);
+void EncodeListIdentityData(const IdentityItem& identity, base::ByteWriter& out);
+void EncodeListServicesData(base::ByteWriter& out);
+void EncodeListInterfacesData(base::ByteWriter& out);
 
 // ListServices "Communications" capability flags.
 inline constexpr std::uint16_t kCapabilityCipOverTcp = 0x0020;

@@ -22,7 +22,8 @@
 #include <span>
 
 #include "base/status.h"
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 
 namespace cip {
 
@@ -69,7 +70,7 @@ class EpathReader {
   bool ReadPort(std::uint8_t first, PathSegment& segment);
   bool ReadLogical(std::uint8_t first, PathSegment& segment);
 
-  ByteReader in_;
+  base::ByteReader in_;
   base::Status status_;
 };
 
@@ -89,7 +90,7 @@ base::Result<ApplicationPath> DecodeApplicationPath(std::span<const std::uint8_t
 // Encoders for what the card itself sends (Port and TCP/IP object attributes, tests): logical segments
 // in the smallest format that holds the value (class and attribute values must fit 16 bits: their 32-bit
 // format is reserved), and a port segment.
-void EncodeLogicalSegment(SegmentKind kind, std::uint32_t value, ByteWriter& out);
-void EncodePortSegment(std::uint16_t port, std::span<const std::uint8_t> link_address, ByteWriter& out);
+void EncodeLogicalSegment(SegmentKind kind, std::uint32_t value, base::ByteWriter& out);
+void EncodePortSegment(std::uint16_t port, std::span<const std::uint8_t> link_address, base::ByteWriter& out);
 
 }  // namespace cip

@@ -40,9 +40,9 @@ class EthernetLinkObject final : public AttributeHandler {
 
   std::uint32_t MaxInstance() const override { return kEthernetLinkInstances; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
   const DeviceInfoProvider& device_;

@@ -8,14 +8,16 @@
 #include <optional>
 #include <span>
 
-#include "cip/byte_io.h"
+#include "base/addresses.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/wire_types.h"
 #include "hal/clock.h"
 
 namespace cip {
 
 struct Ipv4Endpoint {
-  std::uint32_t address = 0;  // host order: 10.0.2.15 = 0x0A00020F
+  base::Ipv4Address address;
   std::uint16_t port = 0;
 
   constexpr bool operator==(const Ipv4Endpoint&) const = default;

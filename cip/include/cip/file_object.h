@@ -79,9 +79,9 @@ class FileObject final : public AttributeHandler {
     return instance == kEdsFileInstance && file_.content != nullptr;
   }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  void GetClassAttribute(std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  void GetClassAttribute(std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override;
 
   // Attribute 1 as a request at `now` would see it.
   FileState state(hal::Micros now) const;
@@ -99,10 +99,10 @@ class FileObject final : public AttributeHandler {
     std::uint32_t next_offset = 0;    // where the next one starts
   };
 
-  ServiceStatus InitiateUpload(const ServiceRequest& request, ByteWriter& reply);
-  ServiceStatus UploadTransfer(const ServiceRequest& request, ByteWriter& reply);
+  ServiceStatus InitiateUpload(const ServiceRequest& request, base::ByteWriter& reply);
+  ServiceStatus UploadTransfer(const ServiceRequest& request, base::ByteWriter& reply);
   // Writes the packet starting at `offset` (its number, type, data and, when last, the checksum).
-  void WritePacket(std::uint8_t number, std::uint32_t offset, ByteWriter& reply) const;
+  void WritePacket(std::uint8_t number, std::uint32_t offset, base::ByteWriter& reply) const;
   // An upload in progress (not finished, not idle for kFileUploadIdleLimit).
   bool UploadLive(hal::Micros now) const;
   // The upload, finished or not, belongs to `session` and was used within kFileUploadIdleLimit.
@@ -116,7 +116,7 @@ class FileObject final : public AttributeHandler {
     bool SupportsService(std::uint32_t instance, std::uint8_t service) const override {
       return owner_.object_.SupportsService(instance, service);
     }
-    ServiceStatus Execute(const ServiceRequest& request, ByteWriter& reply) override;
+    ServiceStatus Execute(const ServiceRequest& request, base::ByteWriter& reply) override;
 
    private:
     FileObject& owner_;
@@ -131,6 +131,6 @@ class FileObject final : public AttributeHandler {
 
 // STRINGI with one English string in ISO 8859-1 (attributes 2 and 4, the directory): USINT 1, "eng",
 // USINT 0xDA (SHORT_STRING), UINT 4 (ISO 8859-1), USINT length, the characters.
-void PutStringI(std::string_view text, ByteWriter& out);
+void PutStringI(std::string_view text, base::ByteWriter& out);
 
 }  // namespace cip

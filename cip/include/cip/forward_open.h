@@ -23,7 +23,7 @@
 // Transport class/trigger: bit 7 direction (1 server), bits 6-4 production trigger (0 cyclic, 1 change
 // of state, 2 application object), bits 3-0 transport class.
 //
-// Every decoder reads through ByteReader / EpathReader and never reads outside the request.
+// Every decoder reads through base::ByteReader / EpathReader and never reads outside the request.
 #pragma once
 
 #include <array>
@@ -32,7 +32,8 @@
 #include <optional>
 #include <span>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/cip_status.h"
 #include "cip/epath.h"
 
@@ -146,8 +147,8 @@ struct Decoded {
 Decoded<ForwardOpenRequest> DecodeForwardOpen(std::span<const std::uint8_t> data, bool large);
 Decoded<ForwardCloseRequest> DecodeForwardClose(std::span<const std::uint8_t> data);
 // Request encoders (tests, fuzz seeds and the documentation's examples).
-void EncodeForwardOpen(const ForwardOpenRequest& request, ByteWriter& out);
-void EncodeForwardClose(const ForwardCloseRequest& request, ByteWriter& out);
+void EncodeForwardOpen(const ForwardOpenRequest& request, base::ByteWriter& out);
+void EncodeForwardClose(const ForwardCloseRequest& request, base::ByteWriter& out);
 
 // ---- Connection path ------------------------------------------------------------------------------
 
@@ -218,7 +219,7 @@ struct ConnectionFailure {
 // 4-byte header): the additional status words, then the triad, remaining path size and reserved byte.
 // The returned status tells the router that the data begins with those words.
 ServiceStatus EncodeConnectionFailure(const ConnectionFailure& failure, const ConnectionTriad& triad,
-                                      ByteWriter& reply);
+                                      base::ByteWriter& reply);
 
 struct ForwardOpenSuccess {
   std::uint32_t o_to_t_connection_id = 0;
@@ -227,7 +228,7 @@ struct ForwardOpenSuccess {
   std::uint32_t o_to_t_api = 0;  // µs
   std::uint32_t t_to_o_api = 0;
 };
-void EncodeForwardOpenSuccess(const ForwardOpenSuccess& success, ByteWriter& reply);
-void EncodeForwardCloseSuccess(const ConnectionTriad& triad, ByteWriter& reply);
+void EncodeForwardOpenSuccess(const ForwardOpenSuccess& success, base::ByteWriter& reply);
+void EncodeForwardCloseSuccess(const ConnectionTriad& triad, base::ByteWriter& reply);
 
 }  // namespace cip

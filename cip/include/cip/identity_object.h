@@ -39,7 +39,7 @@ inline constexpr std::uint8_t kIdentityStateUnknown = 0xFF;
 std::uint16_t ProductCodeOf(DriveModel model);
 std::string_view ProductNameOf(DriveModel model);
 
-std::uint32_t SerialNumberFromMac(const MacAddress& mac);
+std::uint32_t SerialNumberFromMac(const base::MacAddress& mac);
 std::uint16_t EncodeStatusWord(const DeviceStatus& status);
 
 class IdentityObject final : public AttributeHandler {
@@ -52,8 +52,8 @@ class IdentityObject final : public AttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
   std::uint16_t ProductCode() const;

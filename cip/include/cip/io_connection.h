@@ -24,7 +24,8 @@
 #include <optional>
 #include <span>
 
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/explicit_messaging.h"
 #include "cip/forward_open.h"
 #include "cip/providers.h"
@@ -104,7 +105,7 @@ struct ConnectionInfo {
   IoConnectionKind kind = IoConnectionKind::kExclusiveOwner;  // class 1 only
   IoPoints points;                                            // class 1 only
   ConnectionTriad triad;
-  std::uint32_t originator_address = 0;  // host order
+  base::Ipv4Address originator_address;
   std::uint32_t o_to_t_connection_id = 0;
   std::uint32_t t_to_o_connection_id = 0;
   std::uint32_t o_to_t_api = 0;  // µs
@@ -152,7 +153,7 @@ class ConnectionTable {
   virtual bool IsOwned(std::uint32_t consumed_point) const = 0;
   // Whether an exclusive-owner connection opened from another IP address than `originator_address` is
   // open: the drive then belongs to that originator (docs/security.md "Exclusive-owner write lock").
-  virtual bool OwnedByAnotherOriginator(std::uint32_t originator_address) const = 0;
+  virtual bool OwnedByAnotherOriginator(base::Ipv4Address originator_address) const = 0;
   // The Identity status bits 4-7 the connections call for.
   virtual ExtendedDeviceStatus IoStatus() const = 0;
 };
@@ -175,7 +176,7 @@ struct ReceivedIoDatagram {
 // data item, in that order; kOutOfRange when it is cut short.
 base::Result<ReceivedIoDatagram> ParseIoDatagram(std::span<const std::uint8_t> bytes);
 void EncodeIoDatagram(std::uint32_t connection_id, std::uint32_t encapsulation_sequence, std::uint16_t sequence_count,
-                      std::span<const std::uint8_t> data, ByteWriter& out);
+                      std::span<const std::uint8_t> data, base::ByteWriter& out);
 
 // "a is later than b" for wrapping sequence numbers (serial number arithmetic).
 constexpr bool SequenceAfter16(std::uint16_t a, std::uint16_t b) {

@@ -22,7 +22,8 @@
 #include <span>
 
 #include "base/status.h"
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/cip_status.h"
 #include "cip/epath.h"
 #include "cip/explicit_messaging.h"
@@ -40,7 +41,7 @@ struct MessageRouterRequest {
 
 // kOutOfRange when the service or path size byte is missing or the path runs past the end.
 base::Result<MessageRouterRequest> DecodeMessageRouterRequest(std::span<const std::uint8_t> bytes);
-void EncodeMessageRouterRequest(const MessageRouterRequest& request, ByteWriter& out);
+void EncodeMessageRouterRequest(const MessageRouterRequest& request, base::ByteWriter& out);
 
 struct MessageRouterReply {
   std::uint8_t service = 0;  // with the reply bit
@@ -51,7 +52,7 @@ struct MessageRouterReply {
 base::Result<MessageRouterReply> DecodeMessageRouterReply(std::span<const std::uint8_t> bytes);
 
 // Writes a complete reply with no data.
-void EncodeErrorReply(std::uint8_t request_service, const ServiceStatus& status, ByteWriter& out);
+void EncodeErrorReply(std::uint8_t request_service, const ServiceStatus& status, base::ByteWriter& out);
 
 // Decides whether the originator of a request may have it executed (the firmware's ControlLock,
 // docs/security.md "Exclusive-owner write lock"). The router asks after the class, instance, service and
@@ -83,8 +84,8 @@ class MessageRouter final : public UnconnectedMessageHandler {
 
  private:
   ServiceStatus Dispatch(const MessageRouterRequest& request, const ApplicationPath& path, RequestContext& context,
-                         ByteWriter& reply);
-  ServiceStatus MultipleServicePacket(std::span<const std::uint8_t> data, RequestContext& context, ByteWriter& reply,
+                         base::ByteWriter& reply);
+  ServiceStatus MultipleServicePacket(std::span<const std::uint8_t> data, RequestContext& context, base::ByteWriter& reply,
                                       int depth);
   std::size_t UnconnectedSend(const MessageRouterRequest& request, RequestContext& context,
                               std::span<std::uint8_t> reply, int depth);

@@ -24,7 +24,8 @@
 #include <span>
 
 #include "base/status.h"
-#include "cip/byte_io.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "cip/cip_status.h"
 #include "cip/epath.h"
 #include "cip/explicit_messaging.h"
@@ -45,7 +46,7 @@ class CipObject {
   virtual bool HasInstance(std::uint32_t instance) const = 0;
   virtual bool SupportsService(std::uint32_t instance, std::uint8_t service) const = 0;
   // Writes the reply data into `reply` (its overflow becomes 0x11 reply data too large).
-  virtual ServiceStatus Execute(const ServiceRequest& request, ByteWriter& reply) = 0;
+  virtual ServiceStatus Execute(const ServiceRequest& request, base::ByteWriter& reply) = 0;
 };
 
 // The classes the message router knows. Fixed capacity: the manual's chapter 4 lists 12 classes.
@@ -108,15 +109,15 @@ class AttributeHandler {
   virtual bool HasInstanceNumber(std::uint32_t instance) const { return instance >= 1 && instance <= MaxInstance(); }
   virtual std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const = 0;
   // Writes the value of an attribute listed in InstanceAttributes (kGetAllOnly ones included).
-  virtual void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) = 0;
+  virtual void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) = 0;
   // Decodes and applies a kGetSet attribute; `value` holds exactly the request data.
-  virtual ServiceStatus SetInstanceAttribute(std::uint32_t /*instance*/, std::uint16_t /*id*/, ByteReader& /*value*/) {
+  virtual ServiceStatus SetInstanceAttribute(std::uint32_t /*instance*/, std::uint16_t /*id*/, base::ByteReader& /*value*/) {
     return Error(GeneralStatus::kAttributeNotSettable);
   }
   // Class attributes beyond 7 (e.g. Port 8 and 9).
-  virtual void GetClassAttribute(std::uint16_t /*id*/, ByteWriter& /*out*/) {}
+  virtual void GetClassAttribute(std::uint16_t /*id*/, base::ByteWriter& /*out*/) {}
   // Services other than 0x01/0x0E/0x10 that the ClassSpec lists (Reset, Get_and_Clear, ...).
-  virtual ServiceStatus ExecuteOther(const ServiceRequest& /*request*/, ByteWriter& /*reply*/) {
+  virtual ServiceStatus ExecuteOther(const ServiceRequest& /*request*/, base::ByteWriter& /*reply*/) {
     return Error(GeneralStatus::kServiceNotSupported);
   }
 };
@@ -129,14 +130,14 @@ class AttributeObject final : public CipObject {
   std::uint16_t class_id() const override { return spec_.class_id; }
   bool HasInstance(std::uint32_t instance) const override;
   bool SupportsService(std::uint32_t instance, std::uint8_t service) const override;
-  ServiceStatus Execute(const ServiceRequest& request, ByteWriter& reply) override;
+  ServiceStatus Execute(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
-  ServiceStatus GetAttributesAll(std::uint32_t instance, ByteWriter& reply);
-  ServiceStatus GetAttributeSingle(const ServiceRequest& request, ByteWriter& reply);
+  ServiceStatus GetAttributesAll(std::uint32_t instance, base::ByteWriter& reply);
+  ServiceStatus GetAttributeSingle(const ServiceRequest& request, base::ByteWriter& reply);
   ServiceStatus SetAttributeSingle(const ServiceRequest& request);
   bool HasClassAttribute(std::uint16_t id) const;
-  void GetCommonClassAttribute(std::uint16_t id, ByteWriter& out);
+  void GetCommonClassAttribute(std::uint16_t id, base::ByteWriter& out);
 
   const ClassSpec& spec_;
   AttributeHandler& handler_;
@@ -147,21 +148,21 @@ const AttributeSpec* FindAttribute(std::span<const AttributeSpec> table, std::ui
 
 // Typed decoding of a Set_Attribute_Single value: the request data must be exactly the type's size
 // (0x13 when shorter, 0x15 when longer).
-ServiceStatus ReadExactU8(ByteReader& in, std::uint8_t& value);
-ServiceStatus ReadExactU16(ByteReader& in, std::uint16_t& value);
-ServiceStatus ReadExactU32(ByteReader& in, std::uint32_t& value);
+ServiceStatus ReadExactU8(base::ByteReader& in, std::uint8_t& value);
+ServiceStatus ReadExactU16(base::ByteReader& in, std::uint16_t& value);
+ServiceStatus ReadExactU32(base::ByteReader& in, std::uint32_t& value);
 // Checks that a fixed-size structure of `size` bytes is all the request holds.
-ServiceStatus ExpectSize(const ByteReader& in, std::size_t size);
+ServiceStatus ExpectSize(const base::ByteReader& in, std::size_t size);
 
 // The answer to a setting that went to a provider's store: kInvalidArgument (a value the store cannot
 // hold) is 0x09 invalid attribute value, any other failure 0x19 store operation failure.
 ServiceStatus StoreResult(base::Status status);
 
 // Typed encoding of attribute values.
-void PutShortString(std::span<const std::uint8_t> text, ByteWriter& out);  // USINT length + characters
+void PutShortString(std::span<const std::uint8_t> text, base::ByteWriter& out);  // USINT length + characters
 // CIP STRING as the TCP/IP object uses it: UINT length, characters, a pad byte when the length is odd.
-void PutPaddedString(std::span<const std::uint8_t> text, ByteWriter& out);
+void PutPaddedString(std::span<const std::uint8_t> text, base::ByteWriter& out);
 // A padded EPATH preceded by its size in 16-bit words (UINT), e.g. TCP/IP attr 4, Port attr 3.
-void PutSizedPath(std::span<const std::uint8_t> padded_path, ByteWriter& out);
+void PutSizedPath(std::span<const std::uint8_t> padded_path, base::ByteWriter& out);
 
 }  // namespace cip

@@ -33,8 +33,8 @@ class PortObject final : public AttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  void GetClassAttribute(std::uint16_t id, ByteWriter& out) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  void GetClassAttribute(std::uint16_t id, base::ByteWriter& out) override;
 
  private:
   const TcpIpProvider& tcpip_;

@@ -43,7 +43,7 @@ struct DeviceStatus {
 class DeviceInfoProvider {
  public:
   virtual ~DeviceInfoProvider() = default;
-  virtual MacAddress Mac() const = 0;
+  virtual base::MacAddress Mac() const = 0;
   // The inverter the card is plugged into (product code and name follow it).
   virtual DriveModel Model() const = 0;
   virtual DeviceStatus Status() const = 0;
@@ -81,7 +81,7 @@ struct MulticastConfiguration {
 // Attribute 11.
 struct AcdConflict {
   std::uint8_t acd_activity = 0;
-  MacAddress remote_mac{};
+  base::MacAddress remote_mac{};
   std::array<std::uint8_t, 28> arp_pdu{};
 };
 

@@ -46,14 +46,14 @@ class TcpIpInterfaceObject final : public AttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
 
  private:
-  ServiceStatus SetConfigurationControl(ByteReader& value, TcpIpSettings& settings);
-  ServiceStatus SetInterfaceConfiguration(ByteReader& value, TcpIpSettings& settings);
-  ServiceStatus SetHostName(ByteReader& value, TcpIpSettings& settings);
-  ServiceStatus SetMulticast(ByteReader& value, TcpIpSettings& settings);
+  ServiceStatus SetConfigurationControl(base::ByteReader& value, TcpIpSettings& settings);
+  ServiceStatus SetInterfaceConfiguration(base::ByteReader& value, TcpIpSettings& settings);
+  ServiceStatus SetHostName(base::ByteReader& value, TcpIpSettings& settings);
+  ServiceStatus SetMulticast(base::ByteReader& value, TcpIpSettings& settings);
 
   TcpIpProvider& tcpip_;
   AttributeObject object_;

@@ -1,5 +1,5 @@
 // Small value types shared by the encapsulation layer and the CIP objects: fixed-capacity strings, the
-// IPv4 socket address of the Common Packet Format and of ListIdentity, a MAC address.
+// IPv4 socket address of the Common Packet Format and of ListIdentity.
 #pragma once
 
 #include <array>
@@ -8,11 +8,11 @@
 #include <span>
 #include <string_view>
 
-#include "cip/byte_io.h"
+#include "base/addresses.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 
 namespace cip {
-
-using MacAddress = std::array<std::uint8_t, 6>;
 
 // A string of at most N bytes stored inline (CIP SHORT_STRING and STRING values, host names).
 // Assign refuses a longer text instead of cutting it, so a caller cannot silently lose characters.
@@ -64,7 +64,7 @@ struct SocketAddress {
   constexpr bool operator==(const SocketAddress&) const = default;
 };
 
-inline void EncodeSocketAddress(const SocketAddress& address, ByteWriter& out) {
+inline void EncodeSocketAddress(const SocketAddress& address, base::ByteWriter& out) {
   out.U16Be(address.family);
   out.U16Be(address.port);
   out.U32Be(address.address);
@@ -72,7 +72,7 @@ inline void EncodeSocketAddress(const SocketAddress& address, ByteWriter& out) {
 }
 
 // Reads the 16 bytes; the zero padding is not checked (receivers ignore it).
-inline SocketAddress DecodeSocketAddress(ByteReader& in) {
+inline SocketAddress DecodeSocketAddress(base::ByteReader& in) {
   SocketAddress address;
   address.family = in.U16Be();
   address.port = in.U16Be();

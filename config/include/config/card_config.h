@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "base/addresses.h"
 #include "config/access_result.h"
 
 namespace config {
@@ -38,12 +39,12 @@ struct CardConfig {
   Protocol protocol = Protocol::kModbusTcp;  // c500
   std::uint16_t rate_setting = 0;            // c501, 0-4
   IpMode ip_mode = IpMode::kManual;          // c504
-  std::array<std::uint8_t, 4> ip{};          // c505-c508
-  std::array<std::uint8_t, 4> netmask{};     // c509-c512
-  std::array<std::uint8_t, 4> gateway{};     // c513-c516
+  base::Ipv4Address ip{};                    // c505-c508
+  base::Ipv4Address netmask{};               // c509-c512
+  base::Ipv4Address gateway{};               // c513-c516
   std::uint16_t timeout_tenths = 20;         // c523, 0.1 s: 0 disabled, 5-600
   bool web_server = true;                    // c554
-  std::array<std::uint8_t, 4> modbus_master{};  // c600-c603, 0.0.0.0 = any
+  base::Ipv4Address modbus_master{};         // c600-c603, 0.0.0.0 = any
   bool io_scanning = false;                  // c604
   // Read alongside for the loss condition (c103) and the drive's units.
   std::uint16_t cmod = 1;  // 0003
@@ -84,10 +85,10 @@ ParsedConfig ParseCardConfig(std::span<const AccessResult, kConfigNumberCount> r
 struct CardStatus {
   std::array<std::uint16_t, 2> port_rates{};  // c502/c503: 0 unconnected, 1 10M full, 2 10M half,
                                               // 3 100M full, 4 100M half
-  std::array<std::uint8_t, 6> mac{};          // c517-c522
-  std::array<std::uint8_t, 4> ip{};           // c524-c527
-  std::array<std::uint8_t, 4> netmask{};      // c528-c531
-  std::array<std::uint8_t, 4> gateway{};      // c532-c535
+  base::MacAddress mac{};                     // c517-c522
+  base::Ipv4Address ip{};                     // c524-c527
+  base::Ipv4Address netmask{};                // c528-c531
+  base::Ipv4Address gateway{};                // c532-c535
   std::uint16_t ethernet_error = 0;           // c536: 0 none, 1 IO scanning timeout, 2 overload,
                                               // 3 loss of carrier
   bool operator==(const CardStatus&) const = default;

@@ -146,7 +146,7 @@ TEST(WallClockTest, IsMicrosecondsSinceTheUnixEpoch) {
 // A FramePort that hands out queued frames and accepts or refuses transmits as told.
 class ScriptedFramePort final : public FramePort {
  public:
-  MacAddress Mac() const override { return {0x00, 0x00, 0xA0, 0x12, 0x34, 0x56}; }
+  base::MacAddress Mac() const override { return {0x00, 0x00, 0xA0, 0x12, 0x34, 0x56}; }
   std::size_t PortCount() const override { return 2; }
   LinkState Link(PortId port) const override {
     return port == PortId::kLeft ? LinkState{true, LinkSpeed::k100Mbps, true, true} : LinkState{};

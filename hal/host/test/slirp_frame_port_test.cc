@@ -43,11 +43,11 @@ struct Bytes {
   std::size_t size_ = 0;
 };
 
-constexpr MacAddress kCardMac = {0x02, 0x1c, 0x0e, 0x12, 0x34, 0x56};
+constexpr base::MacAddress kCardMac = {0x02, 0x1c, 0x0e, 0x12, 0x34, 0x56};
 constexpr std::array<std::uint8_t, 4> kCardIp = {10, 0, 2, 15};
 constexpr std::array<std::uint8_t, 4> kGatewayIp = {10, 0, 2, 2};
 // slirp's own MAC: 52:55 followed by the gateway's IPv4 address.
-constexpr MacAddress kSlirpMac = {0x52, 0x55, 10, 0, 2, 2};
+constexpr base::MacAddress kSlirpMac = {0x52, 0x55, 10, 0, 2, 2};
 constexpr char kTestHost[] = "127.0.0.3";
 constexpr Micros kPumpLimit = 2 * kMicrosPerSecond;
 
@@ -65,6 +65,7 @@ template <std::size_t N>
 bool Equal(const Bytes& f, std::size_t at, const std::array<std::uint8_t, N>& expected) {
   return f.size() >= at + N && std::equal(expected.begin(), expected.end(), f.begin() + at);
 }
+bool Equal(const Bytes& f, std::size_t at, const base::MacAddress& expected) { return Equal(f, at, expected.octets()); }
 
 std::uint16_t Ipv4HeaderChecksum(const Bytes& f, std::size_t at) {
   std::uint32_t sum = 0;
@@ -74,8 +75,8 @@ std::uint16_t Ipv4HeaderChecksum(const Bytes& f, std::size_t at) {
 }
 
 // 42-byte ARP frame (no padding, as lwIP sends it).
-Bytes ArpFrame(std::uint16_t op, const MacAddress& eth_dst, const MacAddress& sha,
-               const std::array<std::uint8_t, 4>& spa, const MacAddress& tha,
+Bytes ArpFrame(std::uint16_t op, const base::MacAddress& eth_dst, const base::MacAddress& sha,
+               const std::array<std::uint8_t, 4>& spa, const base::MacAddress& tha,
                const std::array<std::uint8_t, 4>& tpa) {
   Bytes f(42);
   std::copy(eth_dst.begin(), eth_dst.end(), f.begin());
@@ -229,7 +230,7 @@ class SlirpFramePortTest : public ::testing::Test {
     while (clock_.NowMicros() < give_up) {
       while (auto frame = ReceiveOne(port)) {
         if (IsArpRequestForCard(*frame)) {
-          const MacAddress asker = {(*frame)[22], (*frame)[23], (*frame)[24],
+          const base::MacAddress asker = {(*frame)[22], (*frame)[23], (*frame)[24],
                                     (*frame)[25], (*frame)[26], (*frame)[27]};
           const std::array<std::uint8_t, 4> asker_ip = {(*frame)[28], (*frame)[29], (*frame)[30],
                                                         (*frame)[31]};

@@ -36,7 +36,7 @@ using Bytes = std::vector<std::uint8_t>;
 
 constexpr int kChildSkipped = 77;
 constexpr std::uint16_t kTestEtherType = 0x88B5;  // IEEE 802 local experimental
-constexpr MacAddress kCardMac = {0x00, 0x00, 0xA0, 0x12, 0x34, 0x56};
+constexpr base::MacAddress kCardMac = {0x00, 0x00, 0xA0, 0x12, 0x34, 0x56};
 constexpr int kWaitMs = 2000;
 
 // --- Namespace plumbing (runs in the child only) ----------------------------------------------------
@@ -112,10 +112,10 @@ class KernelSide {
 
 // A test frame: broadcast from a host MAC, the test EtherType, `size` bytes in all, payload from `seed`.
 Bytes TestFrame(std::size_t size, std::uint8_t seed,
-                MacAddress destination = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}) {
+                base::MacAddress destination = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF}) {
   Bytes frame(size);
   std::copy(destination.begin(), destination.end(), frame.begin());
-  const MacAddress source = {0x02, 0x00, 0x00, 0x00, 0x00, 0x01};
+  const base::MacAddress source = {0x02, 0x00, 0x00, 0x00, 0x00, 0x01};
   std::copy(source.begin(), source.end(), frame.begin() + 6);
   frame[12] = kTestEtherType >> 8;
   frame[13] = kTestEtherType & 0xFF;

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <span>
 
+#include "base/addresses.h"
 #include "base/status.h"
 
 namespace hal {
@@ -55,8 +56,6 @@ struct PortCounters {
   std::uint64_t tx_errors = 0;  // dropped: link down or transmit queue full
 };
 
-using MacAddress = std::array<std::uint8_t, 6>;
-
 struct ReceivedFrame {
   std::size_t length = 0;
   PortId port = PortId::kLeft;
@@ -67,7 +66,7 @@ class FramePort {
   virtual ~FramePort() = default;
 
   // The card's own (factory) MAC address.
-  virtual MacAddress Mac() const = 0;
+  virtual base::MacAddress Mac() const = 0;
   // Ports [0, PortCount()) exist; a card with one port populated reports 1.
   virtual std::size_t PortCount() const = 0;
   virtual LinkState Link(PortId port) const = 0;
@@ -80,8 +79,8 @@ class FramePort {
   // default is a port that receives every multicast frame: there is nothing to program. (Inline, so
   // the interface keeps no key function: its vtable and type information come with each user, built
   // with or without RTTI.)
-  virtual base::Status JoinMulticast(const MacAddress&) { return base::OkStatus(); }
-  virtual base::Status LeaveMulticast(const MacAddress&) { return base::OkStatus(); }
+  virtual base::Status JoinMulticast(const base::MacAddress&) { return base::OkStatus(); }
+  virtual base::Status LeaveMulticast(const base::MacAddress&) { return base::OkStatus(); }
 };
 
 }  // namespace hal

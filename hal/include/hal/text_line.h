@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "hal/frame_port.h"
@@ -19,8 +20,8 @@ class TextLine {
   TextLine& Text(std::string_view text);
   TextLine& Unsigned(std::uint64_t value);
   TextLine& Hex(std::uint8_t byte);  // two lowercase digits
-  TextLine& Ipv4(std::uint32_t host_order);
-  TextLine& Mac(const MacAddress& mac);
+  TextLine& Ipv4(const base::Ipv4Address& address);
+  TextLine& Mac(const base::MacAddress& mac);
 
   std::string_view view() const { return {text_.data(), length_}; }
   bool truncated() const { return truncated_; }
@@ -30,6 +31,8 @@ class TextLine {
   }
 
  private:
+  // The octets as decimal or two-digit hex numbers between separators (an address).
+  TextLine& Octets(std::span<const std::uint8_t> octets, std::string_view separator, bool hex);
   std::array<char, kCapacity> text_{};
   std::size_t length_ = 0;
   bool truncated_ = false;

@@ -9,9 +9,9 @@
 namespace hal::mps2 {
 namespace {
 
-constexpr MacAddress kAllSystems = {0x01, 0x00, 0x5E, 0x00, 0x00, 0x01};  // 224.0.0.1
-constexpr MacAddress kGroup = {0x01, 0x00, 0x5E, 0x01, 0x02, 0x03};       // 239.1.2.3
-constexpr MacAddress kPtp = {0x01, 0x00, 0x5E, 0x00, 0x01, 0x16};         // 224.0.1.22
+constexpr base::MacAddress kAllSystems = {0x01, 0x00, 0x5E, 0x00, 0x00, 0x01};  // 224.0.0.1
+constexpr base::MacAddress kGroup = {0x01, 0x00, 0x5E, 0x01, 0x02, 0x03};       // 239.1.2.3
+constexpr base::MacAddress kPtp = {0x01, 0x00, 0x5E, 0x00, 0x01, 0x16};         // 224.0.1.22
 
 TEST(Mps2MulticastFilter, HashIndexIsTheTopSixBitsOfTheEthernetCrc) {
   EXPECT_EQ(Lan9118HashIndex(kAllSystems), 31);

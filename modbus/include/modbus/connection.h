@@ -73,7 +73,7 @@ class Connection final : public drive_link::AccessListener {
 
   void Attach(ServerShared& shared) { shared_ = &shared; }
 
-  void Open(const Ipv4Address& peer, hal::Micros now);
+  void Open(const base::Ipv4Address& peer, hal::Micros now);
   // Cancels the drive accesses in flight and forgets everything.
   void Close();
   bool is_open() const { return open_; }
@@ -107,7 +107,7 @@ class Connection final : public drive_link::AccessListener {
   ServerShared* shared_ = nullptr;
   bool open_ = false;
   bool must_close_ = false;
-  Ipv4Address peer_{};
+  base::Ipv4Address peer_{};
   hal::Micros last_request_at_ = 0;
   hal::Micros now_hint_ = 0;  // the latest time seen, for work started from a completion
 

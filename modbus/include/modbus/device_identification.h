@@ -10,7 +10,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "modbus/bytes.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "modbus/option_board.h"
 
 namespace modbus {
@@ -24,7 +25,7 @@ inline constexpr std::string_view kOptionBoardProductCode = "IPE002Z";
 // Writes the answer PDU for a request already decoded (code 01-03). The stream starts at `object_id`
 // when that object belongs to the requested category, otherwise at object 0 (Modbus Application
 // Protocol 1.1b3 §6.21: an unknown object id restarts the stream).
-void WriteDeviceIdentification(ByteWriter& writer, IdentitySubject subject, const OptionBoardData& data,
+void WriteDeviceIdentification(base::ByteWriter& writer, IdentitySubject subject, const OptionBoardData& data,
                                std::uint8_t device_id_code, std::uint8_t object_id);
 
 }  // namespace modbus

@@ -18,23 +18,23 @@
 
 #include "config/card_config.h"
 #include "drive_link/register_access.h"
-#include "modbus/bytes.h"
+#include "base/addresses.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 #include "modbus/pdu.h"
 
 namespace modbus {
 
-using Ipv4Address = std::array<std::uint8_t, 4>;
-
 inline constexpr std::uint16_t kIoScanWordCount = 32;
 
 // kNone when `peer` may use unit 255 under `config`, otherwise kIllegalFunction.
-ExceptionCode IoScanningAccess(const config::CardConfig& config, const Ipv4Address& peer);
+ExceptionCode IoScanningAccess(const config::CardConfig& config, const base::Ipv4Address& peer);
 
 // Whether the control registers (reg::IsControlRegister: FA00-FAFF, cmod, fmod, f207, f899) are locked
 // for `peer` through units 0-248: while c604 = 1 and a master c600-c603 is configured, for every client
 // but that master (docs/modbus.md "Unit 255"). The master's own writes, and everyone's while no master is
 // configured, are only subject to the §9.1 reservation of the scanner's targets.
-bool ControlLockedFor(const config::CardConfig& config, const Ipv4Address& peer);
+bool ControlLockedFor(const config::CardConfig& config, const base::Ipv4Address& peer);
 
 // Whether a decoded request to unit 255 writes output words (FC 06, 16, 23): what IO scanning
 // supervision counts as communication (docs/modbus.md "Loss supervision").
@@ -42,6 +42,6 @@ bool IsIoScanningWrite(const Request& request);
 
 // Serves a decoded request to unit 255 whose access was granted; writes the answer PDU (normal or
 // exception). Words outside 0-31 are exception 02; function 43 is the caller's.
-void ServeIoScanner(const Request& request, drive_link::ScannerImage& scanner, ByteWriter& writer);
+void ServeIoScanner(const Request& request, drive_link::ScannerImage& scanner, base::ByteWriter& writer);
 
 }  // namespace modbus

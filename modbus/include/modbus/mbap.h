@@ -11,7 +11,8 @@
 #include <cstdint>
 #include <span>
 
-#include "modbus/bytes.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 
 namespace modbus {
 
@@ -62,6 +63,6 @@ inline std::span<const std::uint8_t> PduOf(std::span<const std::uint8_t> adu) {
 
 // Writes the answer's header: the request's transaction id, protocol id 0 and unit id, the length of
 // the answer's PDU + 1.
-void WriteMbapHeader(ByteWriter& writer, const MbapHeader& request, std::size_t answer_pdu_length);
+void WriteMbapHeader(base::ByteWriter& writer, const MbapHeader& request, std::size_t answer_pdu_length);
 
 }  // namespace modbus

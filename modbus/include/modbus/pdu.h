@@ -8,7 +8,8 @@
 #include <cstdint>
 #include <span>
 
-#include "modbus/bytes.h"
+#include "base/byte_reader.h"
+#include "base/byte_writer.h"
 
 namespace modbus {
 
@@ -112,12 +113,12 @@ constexpr std::uint32_t LastCommunicationNumber(std::uint16_t first, std::uint16
 inline constexpr std::uint16_t kNoSuchRegisterValue = 0x8000;
 
 // --- Answers (PDU only; the connection adds the MBAP header) ---
-void WriteException(ByteWriter& writer, std::uint8_t function, ExceptionCode code);
+void WriteException(base::ByteWriter& writer, std::uint8_t function, ExceptionCode code);
 // FC 03 and FC 23: function, byte count, the words.
-void WriteRegisterValues(ByteWriter& writer, std::uint8_t function, std::span<const std::uint16_t> values);
+void WriteRegisterValues(base::ByteWriter& writer, std::uint8_t function, std::span<const std::uint16_t> values);
 // FC 06: the echo of the request.
-void WriteSingleRegisterAnswer(ByteWriter& writer, std::uint16_t address, std::uint16_t value);
+void WriteSingleRegisterAnswer(base::ByteWriter& writer, std::uint16_t address, std::uint16_t value);
 // FC 16: function, start address, count.
-void WriteMultipleRegistersAnswer(ByteWriter& writer, std::uint16_t address, std::uint16_t count);
+void WriteMultipleRegistersAnswer(base::ByteWriter& writer, std::uint16_t address, std::uint16_t count);
 
 }  // namespace modbus

@@ -54,7 +54,7 @@ class Server {
   void SetBoardData(const OptionBoardData& data) { shared_.board = data; }
 
   // A TCP client was accepted. kResourceExhausted when kMaxClients are open (the caller refuses it).
-  base::Result<ConnectionId> Open(const Ipv4Address& peer, hal::Micros now);
+  base::Result<ConnectionId> Open(const base::Ipv4Address& peer, hal::Micros now);
   // The client is gone or the binding closed it: drive accesses in flight are cancelled.
   void Close(ConnectionId id);
 

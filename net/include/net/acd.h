@@ -37,7 +37,7 @@
 #include "hal/clock.h"
 #include "hal/random.h"
 #include "net/arp.h"
-#include "net/wire.h"
+#include "base/addresses.h"
 
 namespace net {
 
@@ -56,7 +56,7 @@ enum class AcdActivity : std::uint8_t {
 // network byte order). 35 bytes; all zeros = no conflict since the attribute was last cleared.
 struct AcdConflictRecord {
   AcdActivity activity = AcdActivity::kNoConflictDetected;
-  MacAddress remote_mac{};
+  base::MacAddress remote_mac{};
   std::array<std::uint8_t, kArpPduSize> arp_pdu{};
 
   bool operator==(const AcdConflictRecord&) const = default;
@@ -152,15 +152,15 @@ enum class AcdEvent : std::uint8_t {
 
 class Acd {
  public:
-  Acd(const MacAddress& own_mac, const AcdTimings& timings, hal::RandomSource& random, ArpSink& sink);
+  Acd(const base::MacAddress& own_mac, const AcdTimings& timings, hal::RandomSource& random, ArpSink& sink);
 
   // Starts probing for `address` (manual, BOOTP or DHCP); forgets any earlier conflict state except
   // LastConflict(). The first probe goes out from Poll after the probe wait.
-  void Start(Ipv4Address address, hal::Micros now);
+  void Start(base::Ipv4Address address, hal::Micros now);
   // Takes `address` without probing (kAnnouncing from `now`): for an address another check has already
   // probed (lwIP's DHCP client ARP-checks an offered address before binding it). Ongoing detection and
   // the defence then run as after a probe.
-  void Claim(Ipv4Address address, hal::Micros now);
+  void Claim(base::Ipv4Address address, hal::Micros now);
   // Back to kIdle (communication reset, address change): nothing more is sent.
   void Stop();
   // A port's link came up. While the address is in use, starts a semi-active probe burst.
@@ -174,7 +174,7 @@ class Acd {
   hal::Micros NextDeadline() const { return deadline_; }
 
   AcdState State() const { return state_; }
-  Ipv4Address Address() const { return address_; }
+  base::Ipv4Address Address() const { return address_; }
   // The address may be installed and used: kAnnouncing or kOngoing.
   bool AddressUsable() const { return state_ == AcdState::kAnnouncing || state_ == AcdState::kOngoing; }
   // A conflict made the card refuse or give up the address, and it has not claimed it back since
@@ -195,13 +195,13 @@ class Acd {
   void Record(AcdActivity activity, const ArpPacket& packet, std::span<const std::uint8_t> frame);
   hal::Micros Random(hal::Micros min, hal::Micros max);
 
-  MacAddress own_mac_;
+  base::MacAddress own_mac_;
   AcdTimings timings_;
   hal::RandomSource& random_;
   ArpSink& sink_;
 
   AcdState state_ = AcdState::kIdle;
-  Ipv4Address address_ = 0;
+  base::Ipv4Address address_;
   hal::Micros deadline_ = hal::kNever;
   std::uint8_t probes_sent_ = 0;
   std::uint8_t announcements_sent_ = 0;

@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <span>
 
+#include "base/addresses.h"
 #include "base/status.h"
-#include "net/wire.h"
 
 namespace net {
 
@@ -31,13 +31,13 @@ inline constexpr std::uint16_t kArpHardwareEthernet = 1;
 enum class ArpOperation : std::uint16_t { kRequest = 1, kReply = 2 };
 
 struct ArpPacket {
-  MacAddress destination{};  // Ethernet header
-  MacAddress source{};
+  base::MacAddress destination{};  // Ethernet header
+  base::MacAddress source{};
   ArpOperation operation = ArpOperation::kRequest;
-  MacAddress sender_mac{};
-  Ipv4Address sender_ip = 0;
-  MacAddress target_mac{};
-  Ipv4Address target_ip = 0;
+  base::MacAddress sender_mac{};
+  base::Ipv4Address sender_ip;
+  base::MacAddress target_mac{};
+  base::Ipv4Address target_ip;
 
   bool operator==(const ArpPacket&) const = default;
 };
@@ -45,9 +45,9 @@ struct ArpPacket {
 using ArpFrame = std::array<std::uint8_t, kArpFrameSize>;
 
 // RFC 5227 §2.1.1: broadcast request, sender IP 0.0.0.0, target MAC zero, target IP the one probed for.
-ArpPacket ArpProbe(const MacAddress& own_mac, Ipv4Address probed);
+ArpPacket ArpProbe(const base::MacAddress& own_mac, base::Ipv4Address probed);
 // RFC 5227 §2.3: broadcast request with sender IP = target IP = the address claimed, target MAC zero.
-ArpPacket ArpAnnouncement(const MacAddress& own_mac, Ipv4Address claimed);
+ArpPacket ArpAnnouncement(const base::MacAddress& own_mac, base::Ipv4Address claimed);
 
 void EncodeArpFrame(const ArpPacket& packet, std::span<std::uint8_t, kArpFrameSize> out);
 ArpFrame EncodeArpFrame(const ArpPacket& packet);

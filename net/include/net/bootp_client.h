@@ -28,7 +28,7 @@
 #include "hal/clock.h"
 #include "hal/random.h"
 #include "net/dhcp_options.h"
-#include "net/wire.h"
+#include "base/addresses.h"
 
 namespace net {
 
@@ -44,7 +44,7 @@ inline constexpr hal::Micros kBootpMaxRetransmit = 64 * hal::kMicrosPerSecond;
 inline constexpr hal::Micros kBootpRetransmitJitter = 1 * hal::kMicrosPerSecond;
 
 struct BootRequest {
-  MacAddress mac{};
+  base::MacAddress mac{};
   std::uint32_t xid = 0;
   std::uint16_t secs = 0;
   bool broadcast = true;
@@ -53,10 +53,10 @@ struct BootRequest {
 void EncodeBootRequest(const BootRequest& request, std::span<std::uint8_t, kBootpMessageSize> out);
 
 struct BootReply {
-  Ipv4Address your_address = 0;    // yiaddr
-  Ipv4Address server_address = 0;  // siaddr (informational)
-  std::optional<Ipv4Address> subnet_mask;
-  std::optional<Ipv4Address> router;
+  base::Ipv4Address your_address;    // yiaddr
+  base::Ipv4Address server_address;  // siaddr (informational)
+  std::optional<base::Ipv4Address> subnet_mask;
+  std::optional<base::Ipv4Address> router;
 
   bool operator==(const BootReply&) const = default;
 };
@@ -68,18 +68,18 @@ struct BootReply {
 //   kNotFound          another transaction (xid) or another client (chaddr): not ours
 //   kDataLoss          the options area is truncated
 base::Result<BootReply> ParseBootReply(std::span<const std::uint8_t> payload, std::uint32_t xid,
-                                       const MacAddress& mac);
+                                       const base::MacAddress& mac);
 
 // A usable unicast host address: not 0.0.0.0/8, 127/8, 224/4 (multicast) or 240/4 (class E, broadcast).
-bool IsUsableUnicast(Ipv4Address address);
+bool IsUsableUnicast(base::Ipv4Address address);
 // A subnet mask of contiguous one bits from the top (0.0.0.0 excluded).
-bool IsContiguousMask(Ipv4Address mask);
+bool IsContiguousMask(base::Ipv4Address mask);
 
 class BootpClient {
  public:
   enum class State : std::uint8_t { kIdle, kRequesting, kBound };
 
-  BootpClient(const MacAddress& mac, hal::RandomSource& random) : mac_(mac), random_(random) {}
+  BootpClient(const base::MacAddress& mac, hal::RandomSource& random) : mac_(mac), random_(random) {}
 
   // Begins a transaction: a new xid, the first request due at `now`.
   void Start(hal::Micros now);
@@ -104,7 +104,7 @@ class BootpClient {
  private:
   hal::Micros RetransmitDelay();
 
-  MacAddress mac_;
+  base::MacAddress mac_;
   hal::RandomSource& random_;
   State state_ = State::kIdle;
   std::uint32_t xid_ = 0;

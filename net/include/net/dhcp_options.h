@@ -14,8 +14,8 @@
 #include <optional>
 #include <span>
 
+#include "base/addresses.h"
 #include "base/status.h"
-#include "net/wire.h"
 
 namespace net {
 
@@ -61,8 +61,8 @@ base::Result<std::span<const std::uint8_t>> OptionsAfterCookie(std::span<const s
 
 // What the card takes from a BOOTP or DHCP reply. The first instance of each option counts.
 struct IpOptions {
-  std::optional<Ipv4Address> subnet_mask;  // option 1
-  std::optional<Ipv4Address> router;       // option 3: the first router listed
+  std::optional<base::Ipv4Address> subnet_mask;  // option 1
+  std::optional<base::Ipv4Address> router;       // option 3: the first router listed
 };
 
 // One pass over `options` (after the cookie). kDataLoss: truncated (see DhcpOptionReader).

@@ -25,7 +25,7 @@
 #include <cstdint>
 #include <span>
 
-#include "net/wire.h"
+#include "base/addresses.h"
 
 namespace net {
 
@@ -42,7 +42,7 @@ class FrameSwitch {
  public:
   static constexpr std::size_t kCapacity = 64;
 
-  FrameSwitch(const MacAddress& own_mac, std::size_t port_count)
+  FrameSwitch(const base::MacAddress& own_mac, std::size_t port_count)
       : own_mac_(own_mac), port_count_(port_count < kSwitchPorts ? port_count : kSwitchPorts) {}
 
   // A frame received on `port` (< port count); frames shorter than an Ethernet header go nowhere.
@@ -53,17 +53,17 @@ class FrameSwitch {
   void PortDown(std::size_t port);
 
   // The port `mac` was learned on, or kSwitchPorts when unknown.
-  std::size_t PortOf(const MacAddress& mac) const;
+  std::size_t PortOf(const base::MacAddress& mac) const;
   std::size_t learned() const { return count_; }
 
  private:
   struct Entry {
-    MacAddress mac{};
+    base::MacAddress mac{};
     std::uint8_t port = 0;
   };
-  void Learn(const MacAddress& mac, std::size_t port);
+  void Learn(const base::MacAddress& mac, std::size_t port);
 
-  MacAddress own_mac_;
+  base::MacAddress own_mac_;
   std::size_t port_count_;
   std::array<Entry, kCapacity> entries_{};
   std::size_t count_ = 0;

@@ -69,7 +69,7 @@ TEST(IpeEipCodec, ListIdentityAsTheCardEncodesIt) {
   ASSERT_TRUE(item.product_name.Assign(std::string_view("VF-S15")));
   item.state = 0xFF;
   B buffer(128);
-  cip::ByteWriter out(buffer);
+  base::ByteWriter out(buffer);
   cip::EncodeListIdentityData(item, out);
   const std::optional<cip::IdentityItem> decoded = DecodeListIdentityReply(out.written());
   ASSERT_TRUE(decoded);

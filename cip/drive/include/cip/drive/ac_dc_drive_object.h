@@ -84,11 +84,11 @@ class AcDcDriveObject final : public RegisterAttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
 
  private:
-  void GetRegisterAttribute(std::uint16_t id, ByteWriter& out);
+  void GetRegisterAttribute(std::uint16_t id, base::ByteWriter& out);
   ServiceStatus SetRamp(std::uint16_t number, std::uint16_t millis);
   ServiceStatus SetSpeedLimit(std::uint16_t number, std::uint16_t rpm);
   ServiceStatus SetCurrentLimit(std::uint16_t tenths);

@@ -69,9 +69,9 @@ class CipParameterObject final : public RegisterAttributeHandler {
 
   std::uint32_t MaxInstance() const override;
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
-  void GetClassAttribute(std::uint16_t id, ByteWriter& out) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
+  void GetClassAttribute(std::uint16_t id, base::ByteWriter& out) override;
 
  private:
   const DeviceInfoProvider& device_;

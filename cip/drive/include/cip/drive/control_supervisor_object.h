@@ -46,9 +46,9 @@ class ControlSupervisorObject final : public AttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
-  ServiceStatus ExecuteOther(const ServiceRequest& request, ByteWriter& reply) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
+  ServiceStatus ExecuteOther(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
   DriveProfileRuntime& runtime_;
@@ -56,6 +56,6 @@ class ControlSupervisorObject final : public AttributeHandler {
 };
 
 // Decodes a BOOL attribute value (exactly one byte, 0 or 1): 0x13/0x15 for the size, 0x09 otherwise.
-ServiceStatus ReadExactBool(ByteReader& in, bool& value);
+ServiceStatus ReadExactBool(base::ByteReader& in, bool& value);
 
 }  // namespace cip::drive

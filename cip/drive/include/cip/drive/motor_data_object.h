@@ -74,8 +74,8 @@ class MotorDataObject final : public RegisterAttributeHandler {
 
   std::uint32_t MaxInstance() const override { return 1; }
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
 
  private:
   RegisterAttributeObject object_;

@@ -54,8 +54,8 @@ class ParameterObject final : public RegisterAttributeHandler {
   std::uint32_t InstanceCount() const override;
   bool HasInstanceNumber(std::uint32_t instance) const override;
   std::span<const AttributeSpec> InstanceAttributes(std::uint32_t instance) const override;
-  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteWriter& out) override;
-  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, ByteReader& value) override;
+  void GetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteWriter& out) override;
+  ServiceStatus SetInstanceAttribute(std::uint32_t instance, std::uint16_t id, base::ByteReader& value) override;
 
  private:
   ParameterClass class_;

@@ -123,7 +123,7 @@ class RegisterAttributeObject final : public CipObject {
   bool SupportsService(std::uint32_t instance, std::uint8_t service) const override {
     return attributes_.SupportsService(instance, service);
   }
-  ServiceStatus Execute(const ServiceRequest& request, ByteWriter& reply) override;
+  ServiceStatus Execute(const ServiceRequest& request, base::ByteWriter& reply) override;
 
  private:
   RegisterAttributeHandler& handler_;

@@ -54,11 +54,18 @@ const char* StatusName(Status status);
 
 // Value or error. T must be default-constructible (all our payloads are small PODs), which keeps this
 // free of placement-new tricks.
+//
+// A Result is either a value or a failure, never "OK without a value": a Result built from an OK
+// Status holds kInternal instead (a bug at the call site, e.g. `return status;` on a path that forgot
+// to check it). It is turned into an error rather than refused at compile time because the status is
+// usually a run-time value; this way the caller sees a failure and never a default-constructed T
+// passing for a real one (DEVELOPERS.md: never a success answer for something that did not happen).
 template <typename T>
 class [[nodiscard]] Result {
  public:
   constexpr Result(T value) : value_(std::move(value)) {}  // NOLINT: implicit by design
-  constexpr Result(Status status) : status_(status) {}     // NOLINT: implicit by design
+  constexpr Result(Status status)                          // NOLINT: implicit by design
+      : status_(status.ok() ? Status(StatusCode::kInternal) : status) {}
 
   constexpr bool ok() const { return status_.ok(); }
   constexpr Status status() const { return status_; }
