@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Generates the card's parameter table (drive_link/parameter_table.h) from sim/registers.csv.
+"""Generates the card's parameter table (drive_link/parameter_table.h) from drive_link/registers/registers.csv.
 
 The commissioning view of the register table: every host-writable register (access rw) and every
 read-only monitor (storage monitor, access ro), in communication-number order. Each row keeps what the

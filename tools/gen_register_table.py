@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Validates the simulated inverter's register table and generates its C++ form.
 
-The one table is sim/registers.csv (one row per register of the VF-MB1/VF-S15,
+The one table is drive_link/registers/registers.csv (one row per register of the VF-MB1/VF-S15,
 keyed by the 16-bit communication number). This script checks every row and writes a header with a
 constexpr array of sim::RegisterInfo sorted by number, which register_table.cc includes.
 

@@ -19,7 +19,7 @@ using drive_link::AccessError;
 using drive_link::WriteMode;
 using Access = drive_link::test::ScriptedDriveRegisters::Access;
 
-// Instances (rows of sim/registers.csv's rw and monitor registers, in number order, from 1):
+// Instances (rows of drive_link/registers/registers.csv's rw and monitor registers, in number order, from 1):
 // au1 1, cmod 2, fmod 3, acc 6, fh 8, c101 118 (0x76), fd00 153 (0x99), fe36 178 (0xB2); 186 in all.
 class ParameterTableObjectTest : public ::testing::Test {
  protected:

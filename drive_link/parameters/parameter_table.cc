@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-// generated::kParameters, from sim/registers.csv (tools/gen_parameter_table.py).
+// generated::kParameters, from drive_link/registers/registers.csv (tools/gen_parameter_table.py).
 #include "parameter_table.inc"
 
 namespace drive_link {

@@ -1,5 +1,5 @@
 // The card's parameter table (drive_link/parameters/include/drive_link/parameter_table.h), generated
-// from sim/registers.csv: exact rows as the CSV has them, the selection (rw and ro monitors), order,
+// from drive_link/registers/registers.csv: exact rows as the CSV has them, the selection (rw and ro monitors), order,
 // lookups and the range check for signed and unsigned parameters.
 #include "drive_link/parameter_table.h"
 

@@ -23,7 +23,7 @@ UPWARD = [
     ("modbus/connection.cc", '#include "lwip/tcp.h"', "layer modbus may not include"),
     ("firmware/card/card_report.cc", '#include "lwip/priv/tcp_priv.h"', "layer firmware may not include"),
     ("firmware/card/card.cc", '#include "control_server.h"', "layer firmware may not include"),
-    ("net/CMakeLists.txt", 'set(X "${CMAKE_SOURCE_DIR}/sim/registers.csv")', "layer net may not include"),
+    ("net/CMakeLists.txt", 'set(X "${CMAKE_SOURCE_DIR}/sim/register_table.cc")', "layer net may not include"),
 ]
 
 

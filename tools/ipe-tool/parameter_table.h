@@ -1,7 +1,7 @@
 // The drive parameters tools/ipe knows by name: title, unit, decimal step and limits per model.
 //
 // This is the tool's ONE adapter onto a parameter table. Today it reads the project's register table
-// (sim/registers.csv through sim::RegisterInfo); the day the card serves its own parameter table (CIP
+// (drive_link/registers/registers.csv through sim::RegisterInfo); the day the card serves its own parameter table (CIP
 // Parameter object 0x0F), only parameter_table.cc changes. Nothing else in tools/ipe includes sim/.
 #pragma once
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Generates the web page's register table (registers.js) from sim/registers.csv.
+"""Generates the web page's register table (registers.js) from drive_link/registers/registers.csv.
 
 The simulated inverter and the page share one table: tools/gen_register_table.py validates the CSV and
 builds the simulator's C++ table; this script uses the same validation (it imports that script) and

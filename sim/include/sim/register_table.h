@@ -1,6 +1,7 @@
 // The simulated VF-MB1 / VF-S15 inverter's register table: what exists, its limits and how it is stored.
 //
-// Data only. The one source is `registers.csv` beside this file; tools/gen_register_table.py checks it
+// Data only. The one source is drive_link/registers/registers.csv (the inverter's registers, which the
+// card and the simulator share); tools/gen_register_table.py checks it
 // and turns it into the constexpr array that register_table.cc serves (sorted by number). The CSV's
 // `source` column says where every row comes from and which values are assumed; docs/simulator.md
 // lists the assumptions. Behaviour (what a write to FA06 does, how FD01 is computed) belongs to the

@@ -1,5 +1,5 @@
 // The card's parameter table (docs/eds.md "Parameters"): the registers a commissioning engineer reads
-// and sets, generated at build time from sim/registers.csv (tools/gen_parameter_table.py), so the
+// and sets, generated at build time from drive_link/registers/registers.csv (tools/gen_parameter_table.py), so the
 // CIP Parameter object 0x0F, the EDS and the host tool show one table. Flash only: a constexpr array.
 //
 // Rows: every host-writable register (access rw) and every read-only monitor (FB-FE, storage monitor),
