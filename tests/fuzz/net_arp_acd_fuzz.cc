@@ -22,7 +22,7 @@ void Require(bool condition) {
 }
 
 constexpr base::MacAddress kOwnMac = {0x00, 0x00, 0x5E, 0x00, 0x53, 0x01};
-constexpr base::Ipv4Address kAddress = 0xC000020A;
+constexpr base::Ipv4Address kAddress(0xC000020Au);
 
 class CountingRandom final : public hal::RandomSource {
  public:
@@ -43,7 +43,7 @@ class CheckingSink final : public net::ArpSink {
     Require(packet->destination == base::kBroadcastMac && packet->source == kOwnMac);
     Require(packet->operation == net::ArpOperation::kRequest && packet->sender_mac == kOwnMac);
     Require(packet->target_mac == base::kZeroMac && packet->target_ip == kAddress);
-    Require(packet->sender_ip == 0 || packet->sender_ip == kAddress);
+    Require(packet->sender_ip.IsUnspecified() || packet->sender_ip == kAddress);
     // An announcement claims the address: only from a state that may use it (checked after the
     // transition, which happens before the frame is sent).
     if (packet->sender_ip == kAddress) Require(acd_ != nullptr && acd_->AddressUsable());

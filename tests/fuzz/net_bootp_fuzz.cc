@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <span>
 
+#include "base/addresses.h"
+#include "base/byte_reader.h"
 #include "hal/random.h"
 #include "net/bootp_client.h"
 #include "net/dhcp_options.h"
@@ -60,8 +62,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::uint32_t xid = 0;
   base::MacAddress mac{};
   if (size >= net::kBootpFixedSize) {
-    xid = net::LoadBe32(input.subspan<4, 4>());
-    mac = net::LoadMac(input.subspan<28, 6>());
+    base::ByteReader xid_field(input.subspan(4, 4));
+    xid = xid_field.U32Be();
+    base::ByteReader mac_field(input.subspan(28, 6));
+    mac = base::MacAddress::Read(mac_field);
   }
   const base::Result<net::BootReply> reply = net::ParseBootReply(input, xid, mac);
   if (reply.ok()) {
