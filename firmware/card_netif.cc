@@ -101,6 +101,18 @@ bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
   return sent;
 }
 
+bool CardNetif::SendOnPort(hal::PortId id, std::span<const std::uint8_t> bytes) {
+  const std::size_t i = hal::PortIndex(id);
+  if (i >= port_.PortCount() || !port_.Link(id).up) return false;
+  PortTraffic& traffic = traffic_[i];
+  if (!port_.Transmit(id, bytes).ok()) {
+    ++traffic.out_discards;
+    return false;
+  }
+  ++(IsGroupAddress(bytes) ? traffic.out_nucast : traffic.out_ucast);
+  return true;
+}
+
 void CardNetif::StatusCallback(netif* nif) { static_cast<CardNetif*>(nif->state)->RefreshArpIdentity(); }
 
 // The guard follows the address in use (it changes at run time: ACD, BOOTP, DHCP, a new configuration).
@@ -146,6 +158,15 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
     const std::span<const std::uint8_t> bytes(frame.data(), length);
     PortTraffic& traffic = traffic_[hal::PortIndex(received->port)];
     ++(IsGroupAddress(bytes) ? traffic.in_nucast : traffic.in_ucast);
+    if (switch_protocol_ != nullptr && switch_protocol_->Claims(bytes)) {
+      ++counters_.switch_protocol_frames;
+      if (switch_protocol_->OnFrame(bytes, received->port)) {
+        net::SwitchDelivery delivery;
+        for (std::size_t i = 0; i < port_.PortCount(); ++i) delivery.to_port[i] = i != hal::PortIndex(received->port);
+        Forward(bytes, delivery);
+      }
+      continue;
+    }
     const net::SwitchDelivery delivery = switch_.Ingress(bytes, hal::PortIndex(received->port));
     Forward(bytes, delivery);
     if (!delivery.to_card) continue;
@@ -183,6 +204,7 @@ bool CardNetif::SyncLinkState() {
       port_up_[i] = up;
       if (!up) switch_.PortDown(i);
       if (up && observer_ != nullptr) observer_->OnPortLinkUp(id);
+      if (switch_protocol_ != nullptr) switch_protocol_->OnLinkChange(id, up);
     }
     any_up = any_up || up;
   }

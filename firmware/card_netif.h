@@ -45,6 +45,8 @@ struct NetifCounters {
   std::uint64_t rx_frames = 0;
   std::uint64_t rx_dropped_no_pbuf = 0;  // PBUF_POOL empty: frame dropped as a MAC with a full ring would
   std::uint64_t rx_port_errors = 0;      // the port reported an oversize/runt frame
+  std::uint64_t switch_protocol_frames = 0;  // taken by the switch protocol (DLR), not by lwIP
+  std::uint64_t learning_flushes = 0;        // the switch's learning table emptied at the ring's request
   std::uint64_t tx_frames = 0;           // frames (lwIP's, ACD's, the ArpGuard's) handed to at least one port
   std::uint64_t tx_dropped = 0;          // no port with link, or every port refused the frame
 };
@@ -71,6 +73,21 @@ class NetifObserver {
   virtual void OnPortLinkUp(hal::PortId port) = 0;
 };
 
+// A protocol of the switch itself (the DLR ring node, docs/network.md "Ring (DLR)"). The frames it
+// claims go to it, with the port they came in on, instead of through the switch's rules: they are
+// neither learned from nor given to lwIP. OnFrame answers whether the switch passes the frame on,
+// unchanged, out of the other port (a ring node forwards beacons at once, before anything else of the
+// batch). It also hears of every change of a port's link. It flushes the switch's learning table and
+// sends its own frames through the netif (FlushLearningTable, SendOnPort).
+class SwitchProtocol {
+ public:
+  virtual ~SwitchProtocol() = default;
+  virtual bool Claims(std::span<const std::uint8_t> frame) const = 0;
+  // True: forward the frame out of the other port.
+  virtual bool OnFrame(std::span<const std::uint8_t> frame, hal::PortId port) = 0;
+  virtual void OnLinkChange(hal::PortId port, bool up) = 0;
+};
+
 class CardNetif final : private ArpCacheQuery {
  public:
   explicit CardNetif(hal::FramePort& port) : port_(port), switch_(port.Mac(), port.PortCount()) {}
@@ -93,6 +110,17 @@ class CardNetif final : private ArpCacheQuery {
   // Sends a frame the card builds itself (ACD's ARP probes) like lwIP's: by the switch's egress rule.
   // False when no port took it.
   bool SendFrame(std::span<const std::uint8_t> frame);
+  // At most one switch protocol (null: none).
+  void SetSwitchProtocol(SwitchProtocol* protocol) { switch_protocol_ = protocol; }
+  // Sends a frame of a switch protocol out of one port (a ring frame belongs to a port). False when
+  // the port has no link or refused it.
+  bool SendOnPort(hal::PortId port, std::span<const std::uint8_t> frame);
+  // Forgets every station the switch learned (the ring's Flush_Tables, a change of the ring's state).
+  void FlushLearningTable() {
+    switch_.Flush();
+    ++counters_.learning_flushes;
+  }
+  std::size_t learned_stations() const { return switch_.learned(); }
 
   bool link_up() const;
   const NetifCounters& counters() const { return counters_; }
@@ -115,6 +143,7 @@ class CardNetif final : private ArpCacheQuery {
   hal::FramePort& port_;
   net::FrameSwitch switch_;
   NetifObserver* observer_ = nullptr;
+  SwitchProtocol* switch_protocol_ = nullptr;
   std::array<bool, hal::kMaxPorts> port_up_{};
   ArpGuard arp_guard_;
   netif netif_{};

@@ -22,6 +22,7 @@ EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const Ether
     : identity_(devices.port, devices.proxy),
       tcpip_(devices.netif, devices.addressing, devices.writer, devices.store),
       links_(devices.netif, devices.writer),
+      dlr_(devices.ring),
       device_({identity_, tcpip_, links_, devices.reset, devices.random}),
       connections_(device_.router(), identity_, devices.random, options.connections),
       supervisor_(connections_, devices.proxy, devices.clock),
@@ -54,7 +55,7 @@ base::Status EtherNetIpCard::Start() {
   if (base::Status status = assemblies_.Register(device_.assemblies()); !status.ok()) return status;
   for (cip::CipObject* object : {&control_supervisor_.object(), &ac_dc_drive_.object(), &motor_data_.object(),
                                  &parameters_64_.object(), &parameters_65_.object(), &parameters_0f_.object(),
-                                 &file_.object()}) {
+                                 &file_.object(), &dlr_.object()}) {
     if (base::Status status = device_.objects().Register(*object); !status.ok()) return status;
   }
   device_.encapsulation().set_request_lifecycle(&journal_);

@@ -19,6 +19,7 @@
 #include "card_netif.h"
 #include "cip/cip_device.h"
 #include "cip/connection_manager.h"
+#include "cip/dlr_object.h"
 #include "cip/drive/ac_dc_drive_object.h"
 #include "cip/drive/cip_parameter_object.h"
 #include "cip/drive/control_lock.h"
@@ -58,6 +59,7 @@ struct EtherNetIpCardDevices {
   hal::ResetControl& reset;
   hal::RandomSource& random;
   const hal::Clock& clock;
+  const cip::DlrProvider& ring;  // the DLR object's values (CardRing)
 };
 
 struct EtherNetIpCardOptions {
@@ -129,6 +131,7 @@ class EtherNetIpCard final : private DriveControlListener {
   CardIdentity identity_;
   CardTcpIp tcpip_;
   CardEthernetLinks links_;
+  cip::DlrObject dlr_;
   cip::CipDevice device_;
   cip::ConnectionManager connections_;
   CipConnectionSupervisor supervisor_;

@@ -17,6 +17,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       watchdog_(devices.watchdog),
       lwip_(devices),
       netif_(devices.port),
+      ring_(netif_, devices.clock),
       addressing_(netif_, devices.clock, devices.random),
       loop_(devices.clock, devices.waiter, netif_),
       proxy_(devices.drive_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{}),
@@ -26,7 +27,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       modbus_service_(modbus_server_, devices.clock, {.port = 502, .keepalive = options.keepalive}),
       parameter_writer_(proxy_),
       eip_card_({devices.port, netif_, addressing_, proxy_, parameter_writer_, devices.store, reset_,
-                 devices.random, devices.clock},
+                 devices.random, devices.clock, ring_},
                 {.keepalive = options.keepalive, .connections = {}, .eds_override = options.eds}),
       leds_(devices.leds),
       // MS, NS and LNK from one model; the power-up test runs from here.
@@ -46,6 +47,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
   // from the inverter (c504-c516, c081-c096) and ACD has checked it (docs/network.md "Addressing").
   netif_.Start(Ipv4Config{}, nullptr);
   netif_.SetObserver(&addressing_);
+  netif_.SetSwitchProtocol(&ring_);
   web_status_.SetWebCounters(http_server_, web_service_);
 }
 
@@ -85,7 +87,8 @@ base::Status Card::Start() {
   }
   for (Service* service : {static_cast<Service*>(&parameter_writer_), static_cast<Service*>(&web_application_),
                            static_cast<Service*>(&web_service_), static_cast<Service*>(&publisher_),
-                           static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_)}) {
+                           static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_),
+                           static_cast<Service*>(&ring_)}) {
     if (base::Status added = add(*service, PollWhen::kDueOrEvent); !added.ok()) return added;
   }
   loop_.SetEventProbe(&drive_events_);

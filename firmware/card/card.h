@@ -24,6 +24,7 @@
 #include "card_indicators.h"
 #include "card_netif.h"
 #include "card_records.h"
+#include "card_ring.h"
 #include "card_status_publisher.h"
 #include "cip/file_object.h"
 #include "drive_link/register_proxy.h"
@@ -127,6 +128,7 @@ class Card {
   const CardNetif& netif() const { return netif_; }
   const hal::Clock& clock() const { return clock_; }
   const CardAddressing& addressing() const { return addressing_; }
+  const CardRing& ring() const { return ring_; }
   EventLoop& loop() { return loop_; }
   const drive_link::RegisterProxy& proxy() const { return proxy_; }
   const modbus::Server& modbus_server() const { return modbus_server_; }
@@ -203,6 +205,7 @@ class Card {
   hal::Watchdog* watchdog_;
   LwipStart lwip_;
   CardNetif netif_;
+  CardRing ring_;
   CardAddressing addressing_;
   EventLoop loop_;
   ResetLatch reset_;

@@ -179,6 +179,42 @@ void ReportNetwork(const Card& card, ReportSink& out) {
   }
 }
 
+// The ring node (docs/network.md "Ring (DLR)"): the DLR object's view plus the node's counters.
+void ReportRing(const Card& card, ReportSink& out) {
+  const net::DlrRingStatus& s = card.ring().status();
+  static constexpr std::string_view kStates[] = {"idle", "fault", "normal"};
+  out.Value({"dlr.topology"}, static_cast<std::uint64_t>(s.topology));
+  out.Value({"dlr.network_status"}, static_cast<std::uint64_t>(s.network_status));
+  out.Text({"dlr.state"}, kStates[static_cast<std::size_t>(s.node_state)]);
+  hal::TextLine supervisor;
+  supervisor.Mac(s.supervisor.mac).Text(" ").Ipv4(s.supervisor.ip);
+  out.Text({"dlr.supervisor"}, s.supervisor_known ? supervisor.view() : "none");
+  out.Value({"dlr.supervisor_precedence"}, s.supervisor.precedence);
+  out.Value({"dlr.beacon_interval_us"}, s.supervisor.beacon_interval_us);
+  out.Value({"dlr.beacon_timeout_us"}, s.supervisor.beacon_timeout_us);
+  const net::DlrCounters& c = s.counters;
+  out.Value({"dlr.frames_in"}, c.frames_in);
+  out.Value({"dlr.malformed"}, c.malformed);
+  out.Value({"dlr.neighbor_checks_answered"}, c.neighbor_checks_answered);
+  out.Value({"dlr.link_status_sent"}, c.link_status_sent);
+  out.Value({"dlr.neighbor_status_sent"}, c.neighbor_status_sent);
+  out.Value({"dlr.sign_ons"}, c.sign_ons);
+  out.Value({"dlr.flushes"}, c.flushes);
+  out.Value({"dlr.ring_faults"}, c.ring_faults);
+  out.Value({"dlr.transmit_dropped"}, c.transmit_dropped);
+  out.Value({"dlr.frames_sent"}, card.ring().frames_sent());
+  out.Value({"dlr.send_failures"}, card.ring().send_failures());
+  for (std::size_t i = 0; i < net::kDlrPorts; ++i) {
+    const char letter[] = {hal::PortLetter(static_cast<hal::PortId>(i)), '\0'};
+    out.Value({"dlr.", letter, ".frames"}, s.ports[i].frames);
+    out.Value({"dlr.", letter, ".beacons"}, s.ports[i].beacons);
+    out.Value({"dlr.", letter, ".answered"}, s.ports[i].answered);
+  }
+  out.Value({"switch.learned"}, card.netif().learned_stations());
+  out.Value({"switch.learning_flushes"}, card.netif().counters().learning_flushes);
+  out.Value({"switch.protocol_frames"}, card.netif().counters().switch_protocol_frames);
+}
+
 void ReportPool(ReportSink& out, std::string_view name, const base::PoolStats& pool) {
   out.Value({"pool.", name, ".used"}, pool.used);
   out.Value({"pool.", name, ".capacity"}, pool.capacity);
@@ -298,6 +334,7 @@ void ReportCardStats(const Card& card, ReportSink& out) {
   out.Value({"params.written"}, w.written);
   out.Value({"params.failed"}, w.failed);
   ReportNetwork(card, out);
+  ReportRing(card, out);
   ReportPools(card, out);
 }
 

@@ -94,6 +94,20 @@ TEST(FrameSwitchTest, LinkDownForgetsThatPortsStations) {
   EXPECT_EQ(sw.learned(), 1U);
 }
 
+TEST(FrameSwitchTest, FlushForgetsEveryStationAndRelearnsFromTheNextFrame) {
+  FrameSwitch sw(kCard, 2);
+  sw.Ingress(Frame(kCard, kPlc), kL);
+  sw.Ingress(Frame(kCard, kDrive2), kR);
+  sw.Flush();
+  EXPECT_EQ(sw.learned(), 0U);
+  EXPECT_EQ(sw.PortOf(kPlc), kSwitchPorts);
+  // After a ring fault the PLC is behind the other port: the card's frames to it go out of both ports
+  // until its next frame tells where it is.
+  EXPECT_EQ(sw.Egress(Frame(kPlc, kCard)), (std::array<bool, kSwitchPorts>{true, true}));
+  sw.Ingress(Frame(kCard, kPlc), kR);
+  EXPECT_EQ(sw.PortOf(kPlc), kR);
+}
+
 TEST(FrameSwitchTest, AFullTableReplacesItsOldestEntry) {
   FrameSwitch sw(kCard, 2);
   for (std::size_t i = 0; i < FrameSwitch::kCapacity + 1; ++i) {

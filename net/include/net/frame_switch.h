@@ -51,6 +51,12 @@ class FrameSwitch {
   std::array<bool, kSwitchPorts> Egress(std::span<const std::uint8_t> frame) const;
   // The link of `port` went down: the stations learned there are forgotten.
   void PortDown(std::size_t port);
+  // Every learned station is forgotten (a ring's Flush_Tables: the stations may now be behind the
+  // other port).
+  void Flush() {
+    count_ = 0;
+    oldest_ = 0;
+  }
 
   // The port `mac` was learned on, or kSwitchPorts when unknown.
   std::size_t PortOf(const base::MacAddress& mac) const;

@@ -1,0 +1,278 @@
+#!/usr/bin/python3
+"""A scripted DLR ring supervisor for the ring tests (docs/network.md "Ring (DLR)").
+
+Standard library only: raw AF_PACKET sockets on the two host-side ports of the ring (the card's tapL and
+tapR), one thread running a select loop. It does what a beacon-based ring supervisor does, as far as a
+test needs:
+
+- sends a Beacon out of each of its two ports every `interval_us` (ring state, precedence, interval and
+  timeout in the frame), with its own sequence ids;
+- watches its own beacons come back on the other port: both directions seen within the beacon timeout =
+  ring NORMAL, otherwise FAULT. A Link_Status from a node is a fault at once (the fast path);
+- on every change of state calls `on_state(state)` (the test blocks or unblocks its second port for
+  ordinary traffic there) and sends Flush_Tables (learning update enabled) out of both ports;
+- sends Neighbor_Check requests, Locate_Fault and Sign_On on request, and records every DLR frame it
+  receives (Neighbor_Check responses, Link_Status/Neighbor_Status, Learning_Update, Sign_On) with the port
+  it came in on and the kernel's receive time.
+
+Frames it sends carry an 802.1Q tag (VLAN 0, priority 7). The kernel hands received frames over without
+their tag (it keeps tags out of band); `parse` accepts both.
+
+Layouts (after the EtherType 0x80E1): ring subtype 0x02, protocol version 1, frame type, source port,
+source IP (4), sequence id (4, big-endian), then the frame type's fields; every message has 30 bytes
+after the common header. Destinations: 01-21-6C-00-00-01 Beacon, -02 Neighbor_Check and Sign_On,
+-03 Announce, Locate_Fault and Flush_Tables, -05 Learning_Update.
+"""
+import select
+import socket
+import struct
+import threading
+import time
+
+ETH_P_ALL = 0x0003
+ETHERTYPE_DLR = 0x80E1
+ETHERTYPE_VLAN = 0x8100
+BEACON_MAC = bytes.fromhex("01216c000001")
+NEIGHBOR_MAC = bytes.fromhex("01216c000002")
+ANNOUNCE_MAC = bytes.fromhex("01216c000003")
+LEARNING_MAC = bytes.fromhex("01216c000005")
+
+BEACON, NEIGHBOR_REQUEST, NEIGHBOR_RESPONSE, LINK_STATUS, LOCATE_FAULT, ANNOUNCE, SIGN_ON, ADVERTISE, \
+    FLUSH_TABLES, LEARNING_UPDATE = range(1, 11)
+NAMES = {BEACON: "beacon", NEIGHBOR_REQUEST: "neighbor_check_request", NEIGHBOR_RESPONSE:
+         "neighbor_check_response", LINK_STATUS: "link_status", LOCATE_FAULT: "locate_fault", ANNOUNCE: "announce",
+         SIGN_ON: "sign_on", ADVERTISE: "advertise", FLUSH_TABLES: "flush_tables",
+         LEARNING_UPDATE: "learning_update"}
+RING_NORMAL, RING_FAULT = 1, 2
+PAYLOAD_AFTER_HEADER = 30
+
+
+def mac_text(mac):
+    return ":".join(f"{b:02x}" for b in mac)
+
+
+def mac_bytes(text):
+    return bytes.fromhex(text.replace(":", ""))
+
+
+class DlrFrame:
+    """One received DLR frame: the Ethernet addresses, the common header and the raw fields after it."""
+
+    def __init__(self, port, time_ns, destination, source, tagged, kind, source_port, source_ip, sequence, body):
+        self.port, self.time_ns = port, time_ns
+        self.destination, self.source, self.tagged = destination, source, tagged
+        self.kind, self.source_port, self.source_ip, self.sequence, self.body = \
+            kind, source_port, source_ip, sequence, body
+
+    def __repr__(self):
+        return (f"DlrFrame({NAMES.get(self.kind, self.kind)} on {self.port} from {mac_text(self.source)} "
+                f"to {mac_text(self.destination)} port={self.source_port} ip={socket.inet_ntoa(self.source_ip)} "
+                f"seq={self.sequence} body={self.body.hex()})")
+
+
+def parse(frame, port=None, time_ns=0):
+    """The DLR frame in `frame` (with or without one 802.1Q tag), or None for any other frame.
+
+    Raises ValueError for a DLR frame too short for its common header and the 30 bytes every message has."""
+    if len(frame) < 14:
+        return None
+    destination, source = frame[0:6], frame[6:12]
+    ethertype = struct.unpack_from(">H", frame, 12)[0]
+    offset, tagged = 14, False
+    if ethertype == ETHERTYPE_VLAN:
+        if len(frame) < 18:
+            return None
+        ethertype = struct.unpack_from(">H", frame, 16)[0]
+        offset, tagged = 18, True
+    if ethertype != ETHERTYPE_DLR:
+        return None
+    payload = frame[offset:]
+    if len(payload) < 12 + PAYLOAD_AFTER_HEADER:
+        raise ValueError(f"DLR frame of {len(payload)} payload bytes: {frame.hex()}")
+    subtype, version, kind, source_port = payload[0], payload[1], payload[2], payload[3]
+    if subtype != 0x02 or version != 1:
+        raise ValueError(f"DLR frame with subtype {subtype} version {version}")
+    sequence = struct.unpack_from(">I", payload, 8)[0]
+    return DlrFrame(port, time_ns, destination, source, tagged, kind, source_port, payload[4:8], sequence,
+                    payload[12:])
+
+
+def build(destination, source, kind, source_port, source_ip, sequence, fields=b"", tagged=True):
+    """A DLR frame: Ethernet header (802.1Q VLAN 0 priority 7 when tagged), common header, fields padded
+    with zeros to the 30 bytes every message has (longer fields, a long Sign_On list, are kept)."""
+    body = fields + bytes(max(0, PAYLOAD_AFTER_HEADER - len(fields)))
+    header = destination + source
+    if tagged:
+        header += struct.pack(">HH", ETHERTYPE_VLAN, 0xE000)
+    header += struct.pack(">H", ETHERTYPE_DLR)
+    return header + bytes([0x02, 1, kind, source_port]) + socket.inet_aton(source_ip) + \
+        struct.pack(">I", sequence) + body
+
+
+def beacon_fields(ring_state, precedence, interval_us, timeout_us):
+    return struct.pack(">BBII", ring_state, precedence, interval_us, timeout_us)
+
+
+class RingSupervisor:
+    """The supervisor on two interfaces, `ports` = (name of port 1, name of port 2)."""
+
+    def __init__(self, ports, mac, ip, interval_us=2000, timeout_us=None, precedence=200, on_state=None):
+        self.ports = ports
+        self.mac = mac_bytes(mac) if isinstance(mac, str) else mac
+        self.ip = ip
+        self.interval_us = interval_us
+        self.timeout_us = timeout_us if timeout_us is not None else 4 * interval_us
+        self.precedence = precedence
+        self.on_state = on_state
+        self.state = RING_FAULT
+        self.transitions = []      # (time_ns, state, reason)
+        self.received = []         # every DLR frame received that the supervisor did not send itself
+        self.beacons_back = [0, 0]  # own beacons that came back in on port i (sent out of the other one)
+        self.beacons_sent = 0
+        self.max_beacon_gap_us = 0  # the longest time between two beacons out of port 1 (send jitter)
+        self.actions = 0
+        self._sequence = 1
+        self._last_back_ns = [0, 0]
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._sockets = []
+        for name in ports:
+            s = socket.socket(socket.AF_PACKET, socket.SOCK_RAW, socket.htons(ETH_P_ALL))
+            s.bind((name, 0))
+            s.setsockopt(socket.SOL_SOCKET, socket.SO_TIMESTAMPNS, 1)
+            s.setblocking(False)
+            self._sockets.append(s)
+        self._thread = threading.Thread(target=self._run, name="dlr-supervisor", daemon=True)
+
+    # --- control ----------------------------------------------------------------------------------
+    def start(self):
+        self._thread.start()
+        return self
+
+    def stop(self):
+        self._stop.set()
+        self._thread.join(5)
+        for s in self._sockets:
+            s.close()
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+    def next_sequence(self):
+        with self._lock:
+            self._sequence += 1
+            return self._sequence
+
+    def send(self, port, destination, kind, fields=b"", source_port=None, tagged=True):
+        """Sends one DLR frame out of port index `port` (0 or 1); returns its sequence id."""
+        sequence = self.next_sequence()
+        frame = build(destination, self.mac, kind, port + 1 if source_port is None else source_port, self.ip,
+                      sequence, fields, tagged)
+        self._sockets[port].send(frame)
+        return sequence
+
+    def flush_tables(self, learning_update=True):
+        for port in (0, 1):
+            self.send(port, ANNOUNCE_MAC, FLUSH_TABLES, bytes([1 if learning_update else 0]))
+
+    def frames(self, kind=None, port=None, since_ns=0):
+        with self._lock:
+            return [f for f in self.received if (kind is None or f.kind == kind) and
+                    (port is None or f.port == port) and f.time_ns >= since_ns]
+
+    def wait_frame(self, kind, port=None, since_ns=0, limit=2.0, match=None):
+        deadline = time.monotonic() + limit
+        while time.monotonic() < deadline:
+            for f in self.frames(kind, port, since_ns):
+                if match is None or match(f):
+                    return f
+            time.sleep(0.002)
+        return None
+
+    def wait_state(self, state, limit=2.0):
+        deadline = time.monotonic() + limit
+        while time.monotonic() < deadline:
+            if self.state == state:
+                return True
+            time.sleep(0.002)
+        return False
+
+    # --- the loop ---------------------------------------------------------------------------------
+    def _set_state(self, state, reason):
+        if state == self.state:
+            return
+        self.state = state
+        self.transitions.append((time.monotonic_ns(), state, reason))
+        if self.on_state is not None:
+            self.on_state(state)
+        self.flush_tables(True)
+
+    def _send_beacons(self):
+        fields = beacon_fields(self.state, self.precedence, self.interval_us, self.timeout_us)
+        for port in (0, 1):
+            try:
+                self.send(port, BEACON_MAC, BEACON, fields)
+            except OSError:
+                pass  # a port without carrier: the beacon is lost, as on a cut cable
+        self.beacons_sent += 1
+
+    def _receive(self, port):
+        s = self._sockets[port]
+        for _ in range(64):  # bounded per pass
+            try:
+                data, ancillary, _, address = s.recvmsg(2048, 64)
+            except BlockingIOError:
+                return
+            if address[2] == socket.PACKET_OUTGOING:
+                continue  # our own transmission, looped back to the packet socket
+            time_ns = time.time_ns()
+            for level, kind, value in ancillary:
+                if level == socket.SOL_SOCKET and kind == socket.SO_TIMESTAMPNS:
+                    seconds, nanos = struct.unpack("qq", value[:16])
+                    time_ns = seconds * 1_000_000_000 + nanos
+            frame = parse(data, port, time_ns)
+            if frame is None:
+                continue
+            if frame.kind == BEACON and frame.source == self.mac:
+                if frame.source_port == (2 if port == 0 else 1):
+                    self.beacons_back[port] += 1
+                    self._last_back_ns[port] = time.monotonic_ns()
+                continue
+            if frame.source == self.mac:
+                continue  # our own Flush_Tables etc. forwarded round the ring
+            with self._lock:
+                self.received.append(frame)
+            if frame.kind == LINK_STATUS and self.state == RING_NORMAL:
+                self._set_state(RING_FAULT, f"link_status from {mac_text(frame.source)} on {port}")
+
+    def _evaluate(self):
+        now = time.monotonic_ns()
+        timeout_ns = self.timeout_us * 1000
+        both_back = all(now - t <= timeout_ns for t in self._last_back_ns)
+        if both_back and self.state == RING_FAULT:
+            self._set_state(RING_NORMAL, "own beacons back on both ports")
+        elif not both_back and self.state == RING_NORMAL:
+            self._set_state(RING_FAULT, "beacon timeout")
+
+    def _run(self):
+        interval_ns = self.interval_us * 1000
+        next_beacon = time.monotonic_ns()
+        last_beacon = None
+        while not self._stop.is_set():
+            now = time.monotonic_ns()
+            if now >= next_beacon:
+                if last_beacon is not None:
+                    self.max_beacon_gap_us = max(self.max_beacon_gap_us, (now - last_beacon) // 1000)
+                last_beacon = now
+                self._send_beacons()
+                next_beacon += interval_ns
+                if next_beacon < now:  # fell behind (a slow pass): no burst of beacons to catch up
+                    next_beacon = now + interval_ns
+                self._evaluate()
+            wait = max(0, next_beacon - time.monotonic_ns()) / 1e9
+            readable, _, _ = select.select(self._sockets, [], [], wait)
+            for s in readable:
+                self._receive(self._sockets.index(s))
