@@ -3,6 +3,7 @@
 #include <array>
 
 #include "cip/message_router_object.h"
+#include "hal/text_line.h"
 #include "lwip/stats.h"
 #include "lwip_internals.h"
 
@@ -115,6 +116,7 @@ void CardWebStatus::WriteStatistics(web::JsonWriter& json) const {
     json.EndObject().EndObject();
   }
   json.EndArray();
+  WriteRing(json);
   json.Key("lwip").BeginObject();
   Proto(json, "link", lwip_stats.link);
   Proto(json, "etharp", lwip_stats.etharp);
@@ -139,6 +141,30 @@ void CardWebStatus::WriteStatistics(web::JsonWriter& json) const {
   json.Key("request_timeouts").Number(http.request_timeouts).Key("responses_2xx").Number(http.responses_by_class[2]);
   json.Key("responses_4xx").Number(http.responses_by_class[4]).Key("responses_5xx").Number(http.responses_by_class[5]);
   json.EndObject().EndObject();
+}
+
+// The ring node as the DLR object shows it (docs/network.md "Ring (DLR)").
+void CardWebStatus::WriteRing(web::JsonWriter& json) const {
+  static constexpr std::string_view kTopology[] = {"linear", "ring"};
+  static constexpr std::string_view kNetworkStatus[] = {"normal", "ring fault", "unexpected loop detected",
+                                                        "partial network fault", "rapid fault/restore cycle"};
+  static constexpr std::string_view kNodeState[] = {"idle", "fault", "normal"};
+  const net::DlrRingStatus& s = s_.ring.status();
+  json.Key("ring").BeginObject();
+  json.Key("topology").String(kTopology[static_cast<std::size_t>(s.topology) & 1]);
+  json.Key("network_status").String(kNetworkStatus[static_cast<std::size_t>(s.network_status) % 5]);
+  json.Key("node_state").String(kNodeState[static_cast<std::size_t>(s.node_state) % 3]);
+  hal::TextLine text;
+  if (s.supervisor_known) text.Mac(s.supervisor.mac).Text(" ").Ipv4(s.supervisor.ip);
+  json.Key("supervisor").String(s.supervisor_known ? text.view() : "none");
+  json.Key("supervisor_precedence").Number(s.supervisor.precedence);
+  json.Key("beacon_interval_us").Number(static_cast<std::int64_t>(s.supervisor.beacon_interval_us));
+  json.Key("beacon_timeout_us").Number(static_cast<std::int64_t>(s.supervisor.beacon_timeout_us));
+  json.Key("ring_faults").Number(static_cast<std::int64_t>(s.counters.ring_faults));
+  json.Key("learning_flushes").Number(static_cast<std::int64_t>(s.counters.flushes));
+  json.Key("neighbor_checks_answered").Number(static_cast<std::int64_t>(s.counters.neighbor_checks_answered));
+  json.Key("link_status_sent").Number(static_cast<std::int64_t>(s.counters.link_status_sent));
+  json.EndObject();
 }
 
 }  // namespace firmware

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "card_netif.h"
+#include "card_ring.h"
 #include "card_status_publisher.h"
 #include "cip/io_connection.h"
 #include "drive_link/register_proxy.h"
@@ -21,6 +22,7 @@ struct WebCardStatusSources {
   CardNetif& netif;
   const LedMirror& leds;
   const cip::ConnectionTable& connections;
+  const CardRing& ring;
 };
 
 class CardWebStatus final : public WebCardStatus {
@@ -39,6 +41,7 @@ class CardWebStatus final : public WebCardStatus {
   void WriteLeds(web::JsonWriter& json) const override;
   void WriteConnections(web::JsonWriter& json) const override;
   void WriteStatistics(web::JsonWriter& json) const override;
+  void WriteRing(web::JsonWriter& json) const;
 
  private:
   WebCardStatusSources s_;

@@ -39,7 +39,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       // Every configuration read from the inverter goes to the front ends (c500 picks the protocol
       // whose ports open, c554 the web server's): the Modbus service first, the rest in Start().
       publisher_(proxy_, modbus_server_, {}, netif_, kFirmwareVersion, &eip_card_.identity_sink()),
-      web_status_({proxy_, publisher_, netif_, leds_, eip_card_.connections()}),
+      web_status_({proxy_, publisher_, netif_, leds_, eip_card_.connections(), ring_}),
       web_application_({access_, proxy_, proxy_, proxy_, web_status_, eip_card_.served_eds()}),
       http_server_(web_application_),
       web_service_(http_server_, devices.clock, {.port = 80, .keepalive = options.keepalive}) {

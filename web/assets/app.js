@@ -843,8 +843,11 @@
         el('p', { id: `stat-port-${p.port}`, class: p.link ? 'ok' : 'muted',
           text: p.link ? `link up, ${p.speed} Mbit/s, ${p.full_duplex ? 'full' : 'half'} duplex` : 'no link' }),
         el('div', { class: 'kvs' }, kvTables(p.counters || {}, ''))));
-      const rest = Object.fromEntries(Object.entries(s).filter(([k]) => k !== 'ports' && k !== 'lwip'));
+      const rest = Object.fromEntries(Object.entries(s).filter(([k]) => !['ports', 'lwip', 'ring'].includes(k)));
       box.replaceChildren(el('div', { class: 'cards' }, ports),
+        s.ring ? section('Ring (DLR)', el('p', { id: 'stat-ring', class: s.ring.network_status === 'normal' ? 'ok' : 'warn',
+          text: `${s.ring.topology}, ${s.ring.network_status}, supervisor ${s.ring.supervisor}` }),
+          el('div', { class: 'kvs' }, kvTables(s.ring, ''))) : '',
         s.lwip ? section('lwIP', el('div', { class: 'kvs' }, kvTables(s.lwip, ''))) : '',
         Object.keys(rest).length ? section('Other', el('div', { class: 'kvs' }, kvTables(rest, ''))) : '');
     });
