@@ -150,22 +150,31 @@ class DlrRingNode {
     std::uint32_t sequence_id = 0;
   };
   struct PortState {
-    bool link_up = false;
-    hal::Micros beacon_deadline = hal::kNever;  // kNever: no beacon expected on this port
-    hal::Micros check_deadline = hal::kNever;   // a neighbour check waits for its response
+    bool link_up = true;                        // until OnLinkChange says otherwise
+    bool neighbor_lost = false;                 // the last neighbour check of this port failed
     std::uint8_t check_attempts = 0;
-    std::uint32_t check_sequence = 0;
+    hal::Micros beacon_deadline = hal::kNever;  // kNever: no beacon expected on this port
+    hal::Micros check_deadline = hal::kNever;   // kNever: no neighbour check waits for its response
+    std::uint32_t check_first_sequence = 0;     // the requests of the running check
+    std::uint32_t check_last_sequence = 0;
   };
 
+  DlrReceive Receive(std::span<const std::uint8_t> frame, std::size_t port, hal::Micros now);
   DlrReceive OnBeacon(const DlrFrame& frame, std::size_t port, hal::Micros now);
   DlrReceive OnAnnounce(const DlrFrame& frame, hal::Micros now);
-  void OnLocateFault(hal::Micros now);
+  DlrReceive OnFlushTables(const DlrFrame& frame);
+  void OnLocateFault(const DlrFrame& frame, hal::Micros now);
   void OnNeighborResponse(const DlrFrame& frame, std::size_t port);
-  bool UpdateState(std::optional<DlrRingState> ring_state, hal::Micros now);
-  bool SetNodeState(DlrNodeState state);
+  bool BeaconsFresh(std::size_t port, hal::Micros now) const;
+  bool BeaconsActive(hal::Micros now) const;  // beacons of the active supervisor on some port
+  bool Flush(bool flush);                     // counts a flush asked for by Poll / OnLinkChange
+  DlrNodeState Evaluate(hal::Micros now) const;
+  bool UpdateState(hal::Micros now);
   void SendNeighborCheck(std::size_t port, hal::Micros now);
-  void QueueLinkStatus(bool neighbor_status, std::size_t failed_port);
+  void QueueLinkStatus(bool neighbor_status, std::size_t changed_port);
   bool Queue(const Pending& pending);
+  base::Result<std::size_t> Build(const Pending& pending, std::span<std::uint8_t> buffer) const;
+  bool RingKnown() const { return status_.node_state != DlrNodeState::kIdle; }
   std::uint32_t NextSequence() { return ++sequence_; }
 
   base::MacAddress own_mac_;
