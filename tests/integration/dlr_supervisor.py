@@ -11,7 +11,9 @@ test needs:
   ring NORMAL, otherwise FAULT. A Link_Status from a node is a fault at once (the fast path);
 - on every change of state calls `on_state(state)` (the test blocks or unblocks its second port for
   ordinary traffic there) and sends Flush_Tables (learning update enabled) out of both ports;
-- sends Neighbor_Check requests, Locate_Fault and Sign_On on request, and records every DLR frame it
+- answers the Neighbor_Check requests of its neighbours on the port they came in on (unless told not to,
+  to see a node's Neighbor_Status);
+- sends Neighbor_Check requests, Locate_Fault and Sign_On on request, and records the DLR frames it
   receives (Neighbor_Check responses, Link_Status/Neighbor_Status, Learning_Update, Sign_On) with the port
   it came in on and the kernel's receive time.
 
@@ -23,13 +25,17 @@ source IP (4), sequence id (4, big-endian), then the frame type's fields; every 
 after the common header. Destinations: 01-21-6C-00-00-01 Beacon, -02 Neighbor_Check and Sign_On,
 -03 Announce, Locate_Fault and Flush_Tables, -05 Learning_Update.
 """
+import collections
+import queue
 import select
 import socket
 import struct
+import sys
 import threading
 import time
 
 ETH_P_ALL = 0x0003
+SO_TIMESTAMPNS = 35  # not exported by Python's socket module
 ETHERTYPE_DLR = 0x80E1
 ETHERTYPE_VLAN = 0x8100
 BEACON_MAC = bytes.fromhex("01216c000001")
@@ -126,7 +132,17 @@ class RingSupervisor:
         self.on_state = on_state
         self.state = RING_FAULT
         self.transitions = []      # (time_ns, state, reason)
-        self.received = []         # every DLR frame received that the supervisor did not send itself
+        # The latest DLR frames received that the supervisor did not send itself (beacons of others are
+        # only counted): bounded, so that a flood cannot grow it.
+        self.received = collections.deque(maxlen=4096)
+        self.foreign_beacons = 0
+        self.answer_neighbor_checks = [True, True]  # per port: answer a node's Neighbor_Check requests
+        # True: beacons say FAULT whatever the supervisor sees, and nothing is (un)blocked: a supervisor
+        # that has found a partial fault (beacons lost in one direction only) and looks for it.
+        self.announce_fault = False
+        # True: state changes are recorded, announced and flushed, but the ports are left as they are (a
+        # flood that delays beacons in the host's FIFO must not make the test open a loop).
+        self.hold_ports = False
         self.beacons_back = [0, 0]  # own beacons that came back in on port i (sent out of the other one)
         self.beacons_sent = 0
         self.max_beacon_gap_us = 0  # the longest time between two beacons out of port 1 (send jitter)
@@ -139,19 +155,26 @@ class RingSupervisor:
         for name in ports:
             s = socket.socket(socket.AF_PACKET, socket.SOCK_RAW, socket.htons(ETH_P_ALL))
             s.bind((name, 0))
-            s.setsockopt(socket.SOL_SOCKET, socket.SO_TIMESTAMPNS, 1)
+            s.setsockopt(socket.SOL_SOCKET, SO_TIMESTAMPNS, 1)
             s.setblocking(False)
             self._sockets.append(s)
         self._thread = threading.Thread(target=self._run, name="dlr-supervisor", daemon=True)
+        # on_state runs in a thread of its own: blocking a port takes a few milliseconds of `ip` commands,
+        # which must not hold the beacons back.
+        self._actions = queue.Queue()
+        self._worker = threading.Thread(target=self._act, name="dlr-supervisor-actions", daemon=True)
 
     # --- control ----------------------------------------------------------------------------------
     def start(self):
+        self._worker.start()
         self._thread.start()
         return self
 
     def stop(self):
         self._stop.set()
         self._thread.join(5)
+        self._actions.put(None)
+        self._worker.join(10)
         for s in self._sockets:
             s.close()
 
@@ -180,7 +203,7 @@ class RingSupervisor:
 
     def frames(self, kind=None, port=None, since_ns=0):
         with self._lock:
-            return [f for f in self.received if (kind is None or f.kind == kind) and
+            return [f for f in list(self.received) if (kind is None or f.kind == kind) and
                     (port is None or f.port == port) and f.time_ns >= since_ns]
 
     def wait_frame(self, kind, port=None, since_ns=0, limit=2.0, match=None):
@@ -205,13 +228,24 @@ class RingSupervisor:
         if state == self.state:
             return
         self.state = state
+        if state == RING_FAULT:
+            self._last_back_ns = [0, 0]  # the ring closes again only with beacons that came round since
         self.transitions.append((time.monotonic_ns(), state, reason))
-        if self.on_state is not None:
-            self.on_state(state)
-        self.flush_tables(True)
+        self._actions.put(state)
+
+    def _act(self):
+        while True:
+            state = self._actions.get()
+            if state is None:
+                return
+            if self.on_state is not None and not self.hold_ports:
+                self.on_state(state)
+            # After the port is (un)blocked: the nodes forget where stations were and learn them anew.
+            self.flush_tables(True)
 
     def _send_beacons(self):
-        fields = beacon_fields(self.state, self.precedence, self.interval_us, self.timeout_us)
+        state = RING_FAULT if self.announce_fault else self.state
+        fields = beacon_fields(state, self.precedence, self.interval_us, self.timeout_us)
         for port in (0, 1):
             try:
                 self.send(port, BEACON_MAC, BEACON, fields)
@@ -230,14 +264,16 @@ class RingSupervisor:
                 continue  # our own transmission, looped back to the packet socket
             time_ns = time.time_ns()
             for level, kind, value in ancillary:
-                if level == socket.SOL_SOCKET and kind == socket.SO_TIMESTAMPNS:
+                if level == socket.SOL_SOCKET and kind == SO_TIMESTAMPNS:
                     seconds, nanos = struct.unpack("qq", value[:16])
                     time_ns = seconds * 1_000_000_000 + nanos
             frame = parse(data, port, time_ns)
             if frame is None:
                 continue
-            if frame.kind == BEACON and frame.source == self.mac:
-                if frame.source_port == (2 if port == 0 else 1):
+            if frame.kind == BEACON:
+                if frame.source != self.mac:
+                    self.foreign_beacons += 1
+                elif frame.source_port == (2 if port == 0 else 1):
                     self.beacons_back[port] += 1
                     self._last_back_ns[port] = time.monotonic_ns()
                 continue
@@ -245,7 +281,12 @@ class RingSupervisor:
                 continue  # our own Flush_Tables etc. forwarded round the ring
             with self._lock:
                 self.received.append(frame)
-            if frame.kind == LINK_STATUS and self.state == RING_NORMAL:
+            if frame.kind == NEIGHBOR_REQUEST and self.answer_neighbor_checks[port]:
+                self._sockets[port].send(build(NEIGHBOR_MAC, self.mac, NEIGHBOR_RESPONSE, port + 1, self.ip,
+                                               frame.sequence, bytes([frame.source_port])))
+            # A node reporting a port down (a status bit clear) is a fault at once; one reporting its
+            # port up again is not (the ring closes when the beacons come back round).
+            if frame.kind == LINK_STATUS and frame.body[0] & 0x03 != 0x03 and self.state == RING_NORMAL:
                 self._set_state(RING_FAULT, f"link_status from {mac_text(frame.source)} on {port}")
 
     def _evaluate(self):
@@ -276,3 +317,45 @@ class RingSupervisor:
             readable, _, _ = select.select(self._sockets, [], [], wait)
             for s in readable:
                 self._receive(self._sockets.index(s))
+
+
+def flood(iface, seconds, rate):
+    """Ring frames at `rate` frames/s out of `iface` for `seconds`: Neighbor_Check requests (each asks for an
+    answer), Locate_Fault (each starts neighbour checks), beacons of a second supervisor of lower precedence
+    (forwarded), Flush_Tables without learning update, and malformed DLR frames (wrong version, truncated,
+    a Sign_On whose count runs past its end). Prints what it sent."""
+    raw = socket.socket(socket.AF_PACKET, socket.SOCK_RAW)
+    raw.bind((iface, 0))
+    rogue = bytes.fromhex("020000bad001")
+    frames = [
+        build(NEIGHBOR_MAC, rogue, NEIGHBOR_REQUEST, 1, "10.0.0.9", 7),
+        build(ANNOUNCE_MAC, rogue, LOCATE_FAULT, 1, "10.0.0.9", 8),
+        build(BEACON_MAC, rogue, BEACON, 1, "10.0.0.9", 9, beacon_fields(RING_NORMAL, 1, 400, 1960)),
+        build(ANNOUNCE_MAC, rogue, FLUSH_TABLES, 1, "10.0.0.9", 10, bytes([0])),
+        build(NEIGHBOR_MAC, rogue, NEIGHBOR_REQUEST, 1, "10.0.0.9", 11)[:24],           # truncated
+        build(BEACON_MAC, rogue, BEACON, 1, "10.0.0.9", 12).replace(b"\x80\xe1\x02\x01", b"\x80\xe1\x02\x07"),
+        build(NEIGHBOR_MAC, rogue, SIGN_ON, 1, "10.0.0.9", 13, struct.pack(">H", 400)),  # count past its end
+    ]
+    sent = errors = 0
+    begin = time.monotonic()
+    until = begin + seconds
+    while time.monotonic() < until:
+        ahead = (sent + errors) / rate - (time.monotonic() - begin)
+        if ahead > 0:
+            time.sleep(ahead)
+        for i in range(32):
+            try:
+                raw.send(frames[(sent + errors + i) % len(frames)])
+                sent += 1
+            except OSError:
+                errors += 1  # the TAP queue is full: the card reads at its own pace
+    print(f"dlr flood: {sent} ring frames in {seconds} s ({sent / seconds:.0f} frames/s), {errors} refused by the "
+          "kernel", flush=True)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) == 5 and sys.argv[1] == "flood":
+        flood(sys.argv[2], float(sys.argv[3]), float(sys.argv[4]))
+    else:
+        print("usage: dlr_supervisor.py flood IFACE SECONDS FRAMES_PER_SECOND", file=sys.stderr)
+        sys.exit(2)
