@@ -9,6 +9,7 @@
 
 #include "cip/connection_manager.h"
 #include "cip/drive/assembly_codec.h"
+#include "cip/dlr_object.h"
 #include "cip/drive/cip_parameter_object.h"
 #include "cip/ethernet_link_object.h"
 #include "cip/identity_object.h"
@@ -362,6 +363,7 @@ void WriteTail(Text& out) {
   WriteClass("TCP/IP Interface Class", "TCP/IP Interface Object", kTcpIpClassRevision, kClassTcpIpInterface, 1, out);
   WriteClass("Ethernet Link Class", "Ethernet Link Object", kEthernetLinkClassRevision, kClassEthernetLink,
              kEthernetLinkInstances, out);
+  WriteClass("DLR Class", "Device Level Ring Object", kDlrClassRevision, kClassDlr, 1, out);
 }
 
 }  // namespace

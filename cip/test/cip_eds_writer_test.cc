@@ -387,13 +387,17 @@ TEST(EdsWriter, SectionsInOrder) {
   std::size_t at = 0;
   for (const std::string_view name : {"[File]", "[Device]", "[Device Classification]", "[Params]", "[Groups]",
                                       "[Assembly]", "[Connection Manager]", "[Port]", "[Capacity]",
-                                      "[Identity Class]", "[TCP/IP Interface Class]", "[Ethernet Link Class]"}) {
+                                      "[Identity Class]", "[TCP/IP Interface Class]", "[Ethernet Link Class]",
+                                      "[DLR Class]"}) {
     const std::size_t found = text.find("\n" + std::string(name) + "\n", at);
     ASSERT_NE(found, std::string::npos) << name;
     at = found + 1;
   }
   EXPECT_NE(text.find("\n    Port1 = TCP, \"EtherNet/IP\", \"20 F5 24 01\", 2;\n"), std::string::npos);
   EXPECT_NE(text.find("\n    TSpec1 = TxRx, 18, 1000;\n"), std::string::npos);
+  EXPECT_NE(text.find("\n[DLR Class]\n    Revision = 3;\n    Object_Name = \"Device Level Ring Object\";\n"
+                      "    Object_Class_Code = 0x47;\n    MaxInst = 1;\n"),
+            std::string::npos);
   EXPECT_EQ(text.back(), '\n');
 }
 
