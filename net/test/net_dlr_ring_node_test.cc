@@ -200,6 +200,17 @@ TEST_F(DlrRingNodeTest, LinkDown_LinkStatusToTheSupervisorAndFault) {
   EXPECT_FALSE(node.NextTransmit(buffer, 0).has_value());
 }
 
+TEST_F(DlrRingNodeTest, BothLinksDown_IdleAndNoWayOut) {
+  NormalRing(0);
+  EXPECT_TRUE(node.OnLinkChange(0, false, 100));
+  EXPECT_TRUE(node.OnLinkChange(1, false, 200));
+  EXPECT_EQ(node.status().node_state, DlrNodeState::kIdle);
+  EXPECT_EQ(node.status().counters.link_status_sent, 1U);  // the first, out of port 2; then no port left
+  EXPECT_EQ(Next(node, 1)[30], 0x02);
+  EXPECT_FALSE(node.NextTransmit(buffer, 0).has_value());
+  EXPECT_EQ(node.NextDeadline(), hal::kNever);
+}
+
 TEST_F(DlrRingNodeTest, LinkChangeWithoutRing_NothingSent) {
   EXPECT_FALSE(node.OnLinkChange(1, false, 0));
   EXPECT_FALSE(node.NextTransmit(buffer, 0).has_value());
