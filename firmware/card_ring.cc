@@ -33,8 +33,9 @@ bool CardRing::OnFrame(std::span<const std::uint8_t> frame, hal::PortId port) {
   const net::DlrReceive receive = node_.OnFrame(frame, ring_port, now);
   Flush(receive.flush_learning_table);
   if (receive.sign_on) {
-    if (const std::optional<net::DlrTransmit> sign_on = node_.ForwardSignOn(frame, ring_port, buffer_)) {
-      Send(*sign_on);
+    std::array<std::uint8_t, hal::kMaxFrameBytes> sign_on_frame;
+    if (const std::optional<net::DlrTransmit> sign_on = node_.ForwardSignOn(frame, ring_port, sign_on_frame)) {
+      Send(*sign_on, sign_on_frame);
     }
   }
   SendQueued(now);
@@ -55,11 +56,11 @@ void CardRing::Poll(hal::Micros now) {
 
 void CardRing::SendQueued(hal::Micros now) {
   // The queue is fixed (DlrRingNode::kTransmitQueue): this loop ends.
-  while (const std::optional<net::DlrTransmit> transmit = node_.NextTransmit(buffer_, now)) Send(*transmit);
+  while (const std::optional<net::DlrTransmit> transmit = node_.NextTransmit(buffer_, now)) Send(*transmit, buffer_);
 }
 
-void CardRing::Send(const net::DlrTransmit& transmit) {
-  if (netif_.SendOnPort(PortOf(transmit.port), std::span<const std::uint8_t>(buffer_.data(), transmit.length))) {
+void CardRing::Send(const net::DlrTransmit& transmit, std::span<const std::uint8_t> buffer) {
+  if (netif_.SendOnPort(PortOf(transmit.port), buffer.first(transmit.length))) {
     ++frames_sent_;
   } else {
     ++send_failures_;

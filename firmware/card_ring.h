@@ -47,13 +47,15 @@ class CardRing final : public SwitchProtocol, public Service, public cip::DlrPro
 
  private:
   void SendQueued(hal::Micros now);
-  void Send(const net::DlrTransmit& transmit);
+  void Send(const net::DlrTransmit& transmit, std::span<const std::uint8_t> buffer);
   void Flush(bool wanted);
 
   CardNetif& netif_;
   const hal::Clock& clock_;
   net::DlrRingNode node_;
-  std::array<std::uint8_t, hal::kMaxFrameBytes> buffer_{};
+  // The node's own frames are 60 bytes; only a passed-on Sign_On can be longer, and it is built on the
+  // stack of the receive path (RAM is the card's tightest budget).
+  std::array<std::uint8_t, net::kEthernetMinFrameSize> buffer_{};
   std::uint32_t frames_sent_ = 0;
   std::uint32_t send_failures_ = 0;  // the port had no link or refused the frame
 };
