@@ -24,7 +24,7 @@ constexpr std::uint8_t kAddressFamilyIpv4 = 1;   // IANA address family numbers
 constexpr std::uint8_t kInterfaceIfIndex = 2;    // Management Address interface numbering subtype
 
 void TlvHeader(base::ByteWriter& out, std::uint8_t type, std::size_t length) {
-  out.U16Be(static_cast<std::uint16_t>(type << 9 | (length & kMaxTlvLength)));
+  out.U16Be(static_cast<std::uint16_t>(std::size_t{type} << 9 | (length & kMaxTlvLength)));
 }
 
 std::span<const std::uint8_t> AsBytes(std::string_view text) {
