@@ -22,6 +22,7 @@
 #include "base/status.h"
 #include "card_addressing.h"
 #include "card_indicators.h"
+#include "card_lldp.h"
 #include "card_netif.h"
 #include "card_records.h"
 #include "card_status_publisher.h"
@@ -127,6 +128,7 @@ class Card {
   const CardNetif& netif() const { return netif_; }
   const hal::Clock& clock() const { return clock_; }
   const CardAddressing& addressing() const { return addressing_; }
+  const CardLldp& lldp() const { return lldp_; }
   EventLoop& loop() { return loop_; }
   const drive_link::RegisterProxy& proxy() const { return proxy_; }
   const modbus::Server& modbus_server() const { return modbus_server_; }
@@ -204,6 +206,7 @@ class Card {
   LwipStart lwip_;
   CardNetif netif_;
   CardAddressing addressing_;
+  CardLldp lldp_;
   EventLoop loop_;
   ResetLatch reset_;
   drive_link::RegisterProxy proxy_;
