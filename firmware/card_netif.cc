@@ -83,28 +83,25 @@ err_t CardNetif::LinkOutput(pbuf* p) {
 }
 
 bool CardNetif::SendFrame(std::span<const std::uint8_t> bytes) {
-  const bool group = IsGroupAddress(bytes);
   const std::array<bool, net::kSwitchPorts> out = switch_.Egress(bytes);
   bool sent = false;
   for (std::size_t i = 0; i < port_.PortCount(); ++i) {
-    const auto id = static_cast<hal::PortId>(i);
-    if (!out[i] || !port_.Link(id).up) continue;
-    PortTraffic& traffic = traffic_[i];
-    if (port_.Transmit(id, bytes).ok()) {
-      sent = true;
-      ++(group ? traffic.out_nucast : traffic.out_ucast);
-    } else {
-      ++traffic.out_discards;
-    }
+    if (out[i] && TransmitOn(i, bytes)) sent = true;
   }
   ++(sent ? counters_.tx_frames : counters_.tx_dropped);
   return sent;
 }
 
-bool CardNetif::SendOnPort(hal::PortId id, std::span<const std::uint8_t> bytes) {
-  const std::size_t i = hal::PortIndex(id);
-  if (i >= port_.PortCount() || !port_.Link(id).up) return false;
-  PortTraffic& traffic = traffic_[i];
+bool CardNetif::SendFrameOn(hal::PortId port, std::span<const std::uint8_t> bytes) {
+  const bool sent = hal::PortIndex(port) < port_.PortCount() && TransmitOn(hal::PortIndex(port), bytes);
+  ++(sent ? counters_.tx_frames : counters_.tx_dropped);
+  return sent;
+}
+
+bool CardNetif::TransmitOn(std::size_t port, std::span<const std::uint8_t> bytes) {
+  const auto id = static_cast<hal::PortId>(port);
+  if (!port_.Link(id).up) return false;
+  PortTraffic& traffic = traffic_[port];
   if (!port_.Transmit(id, bytes).ok()) {
     ++traffic.out_discards;
     return false;
@@ -172,6 +169,7 @@ std::size_t CardNetif::PumpReceive(std::size_t max_frames) {
     if (!delivery.to_card) continue;
     // An ACD yield in the observer removes the address before the guard and lwIP see the frame.
     if (observer_ != nullptr) observer_->OnFrameToCard(bytes);
+    if (port_handler_ != nullptr && port_handler_->TakeFrame(received->port, bytes)) continue;
     const ArpGuard::Verdict verdict = arp_guard_.Inspect(bytes, *this, sys_now());
     if (verdict == ArpGuard::Verdict::kAnswer) {
       ++counters_.rx_frames;  // taken in, as lwIP would have: only its answer comes from the guard

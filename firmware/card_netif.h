@@ -3,8 +3,9 @@
 // The card has one MAC and one IP address behind its internal switch (net::FrameSwitch: the card, port
 // L, port R). Receive: the switch decides per frame; a frame for the card goes to the observer (ACD
 // reads ARP there) and then into lwIP through netif->input; a frame for another station passes to the
-// other port (daisy chain). Transmit: lwIP's frames go out of the port their destination was learned on,
-// or every port with link when it is unknown. Link: the netif's link is up while at least one port has
+// other port (daisy chain); a per-port protocol's frame (LLDP) is taken before lwIP by the port frame
+// handler, which is told the ingress port. Transmit: lwIP's frames go out of the port their destination
+// was learned on, or every port with link when it is unknown. Link: the netif's link is up while at least one port has
 // link; a port going down flushes the stations learned on it, one coming up is told to the observer.
 //
 // ARP: every frame for the card passes the ArpGuard (arp_guard.h) after the observer (ACD must see every
@@ -78,7 +79,7 @@ class NetifObserver {
 // neither learned from nor given to lwIP. OnFrame answers whether the switch passes the frame on,
 // unchanged, out of the other port (a ring node forwards beacons at once, before anything else of the
 // batch). It also hears of every change of a port's link. It flushes the switch's learning table and
-// sends its own frames through the netif (FlushLearningTable, SendOnPort).
+// sends its own frames through the netif (FlushLearningTable, SendFrameOn).
 class SwitchProtocol {
  public:
   virtual ~SwitchProtocol() = default;
@@ -86,6 +87,14 @@ class SwitchProtocol {
   // True: forward the frame out of the other port.
   virtual bool OnFrame(std::span<const std::uint8_t> frame, hal::PortId port) = 0;
   virtual void OnLinkChange(hal::PortId port, bool up) = 0;
+};
+
+// Takes the frames for the card that belong to a per-port protocol (LLDP), with the port they came in
+// on, after the observer and before lwIP. True: the frame was the handler's and goes no further.
+class PortFrameHandler {
+ public:
+  virtual ~PortFrameHandler() = default;
+  virtual bool TakeFrame(hal::PortId port, std::span<const std::uint8_t> frame) = 0;
 };
 
 class CardNetif final : private ArpCacheQuery {
@@ -107,20 +116,22 @@ class CardNetif final : private ArpCacheQuery {
 
   // At most one observer (null: none).
   void SetObserver(NetifObserver* observer) { observer_ = observer; }
+  // At most one handler (null: none).
+  void SetPortFrameHandler(PortFrameHandler* handler) { port_handler_ = handler; }
   // Sends a frame the card builds itself (ACD's ARP probes) like lwIP's: by the switch's egress rule.
   // False when no port took it.
   bool SendFrame(std::span<const std::uint8_t> frame);
   // At most one switch protocol (null: none).
   void SetSwitchProtocol(SwitchProtocol* protocol) { switch_protocol_ = protocol; }
-  // Sends a frame of a switch protocol out of one port (a ring frame belongs to a port). False when
-  // the port has no link or refused it.
-  bool SendOnPort(hal::PortId port, std::span<const std::uint8_t> frame);
   // Forgets every station the switch learned (the ring's Flush_Tables, a change of the ring's state).
   void FlushLearningTable() {
     switch_.Flush();
     ++counters_.learning_flushes;
   }
   std::size_t learned_stations() const { return switch_.learned(); }
+  // Sends a frame out of one port only, whatever the switch knows (LLDP is per link). False when the
+  // port has no link or refused the frame.
+  bool SendFrameOn(hal::PortId port, std::span<const std::uint8_t> frame);
 
   bool link_up() const;
   const NetifCounters& counters() const { return counters_; }
@@ -136,6 +147,7 @@ class CardNetif final : private ArpCacheQuery {
   static void StatusCallback(netif* nif);
   static err_t MacFilterCallback(netif* nif, const ip4_addr_t* group, enum netif_mac_filter_action action);
   err_t LinkOutput(pbuf* p);
+  bool TransmitOn(std::size_t port, std::span<const std::uint8_t> frame);  // counted per port
   void Forward(std::span<const std::uint8_t> frame, const net::SwitchDelivery& delivery);
   void RefreshArpIdentity();
   bool Has(base::Ipv4Address address) const override;  // ArpCacheQuery: a stable lwIP ARP entry
@@ -144,6 +156,7 @@ class CardNetif final : private ArpCacheQuery {
   net::FrameSwitch switch_;
   NetifObserver* observer_ = nullptr;
   SwitchProtocol* switch_protocol_ = nullptr;
+  PortFrameHandler* port_handler_ = nullptr;
   std::array<bool, hal::kMaxPorts> port_up_{};
   ArpGuard arp_guard_;
   netif netif_{};

@@ -60,7 +60,7 @@ void CardRing::SendQueued(hal::Micros now) {
 }
 
 void CardRing::Send(const net::DlrTransmit& transmit, std::span<const std::uint8_t> buffer) {
-  if (netif_.SendOnPort(PortOf(transmit.port), buffer.first(transmit.length))) {
+  if (netif_.SendFrameOn(PortOf(transmit.port), buffer.first(transmit.length))) {
     ++frames_sent_;
   } else {
     ++send_failures_;

@@ -34,6 +34,40 @@ const char* ConnectionKind(const cip::ConnectionInfo& info) {
   return "unknown";
 }
 
+// "lldp": {"neighbours": [{"port", "chassis", "port_id", "name", "port_description", "mgmt", "ttl"}],
+// and the counters}. IDs and texts as `stats` shows them (card_lldp.h).
+void Lldp(web::JsonWriter& json, const net::LldpAgent& agent) {
+  json.Key("lldp").BeginObject().Key("neighbours").BeginArray();
+  for (const net::LldpNeighbour& n : agent.neighbours()) {
+    const char letter[1] = {hal::PortLetter(static_cast<hal::PortId>(n.port))};
+    hal::TextLine text;
+    json.BeginObject().Key("port").String(std::string_view(letter, 1));
+    DescribeLldpId(n.info.chassis, true, text);
+    json.Key("chassis").String(text.view());
+    text.Clear();
+    DescribeLldpId(n.info.port, false, text);
+    json.Key("port_id").String(text.view());
+    text.Clear();
+    DescribeLldpText(n.info.system_name.view(), text);
+    json.Key("name").String(text.view());
+    text.Clear();
+    DescribeLldpText(n.info.port_description.view(), text);
+    json.Key("port_description").String(text.view());
+    text.Clear();
+    json.Key("mgmt");
+    if (n.info.management.IsUnspecified()) {
+      json.Null();
+    } else {
+      json.String(text.Ipv4(n.info.management).view());
+    }
+    json.Key("ttl").Number(n.info.ttl_seconds).EndObject();
+  }
+  const net::LldpCounters& c = agent.counters();
+  json.EndArray().Key("frames_in").Number(c.frames_in).Key("frames_out").Number(c.frames_out);
+  json.Key("malformed").Number(c.malformed).Key("table_full").Number(c.table_full);
+  json.Key("aged_out").Number(c.aged_out).EndObject();
+}
+
 }  // namespace
 
 const char* CardWebStatus::drive_link_state() const { return drive_link::LinkStateName(s_.proxy.link().state()); }
@@ -117,6 +151,7 @@ void CardWebStatus::WriteStatistics(web::JsonWriter& json) const {
   }
   json.EndArray();
   WriteRing(json);
+  if (lldp_ != nullptr) Lldp(json, *lldp_);
   json.Key("lwip").BeginObject();
   Proto(json, "link", lwip_stats.link);
   Proto(json, "etharp", lwip_stats.etharp);

@@ -4,6 +4,7 @@
 // counters and the web server's own.
 #pragma once
 
+#include "card_lldp.h"
 #include "card_netif.h"
 #include "card_ring.h"
 #include "card_status_publisher.h"
@@ -33,6 +34,8 @@ class CardWebStatus final : public WebCardStatus {
     http_ = &http;
     web_service_ = &service;
   }
+  // The LLDP neighbour table and counters ("lldp" of the statistics).
+  void SetLldp(const net::LldpAgent& lldp) { lldp_ = &lldp; }
 
   const config::CardConfig& config() const override { return s_.proxy.config(); }
   config::CardStatus card_status() const override { return s_.publisher.board_data().status; }
@@ -47,6 +50,7 @@ class CardWebStatus final : public WebCardStatus {
   WebCardStatusSources s_;
   const web::HttpServer* http_ = nullptr;
   const WebService* web_service_ = nullptr;
+  const net::LldpAgent* lldp_ = nullptr;
 };
 
 }  // namespace firmware

@@ -4,6 +4,14 @@
 #include "lwip_port.h"
 
 namespace firmware {
+namespace {
+
+// What LLDP's System Description TLV says (docs/network.md "LLDP").
+constexpr std::string_view kLldpSystemDescription =
+    "IPE002Z EtherNet/IP + Modbus TCP option card, firmware V1.06";
+static_assert(kFirmwareVersion == 0x0106, "kLldpSystemDescription names the firmware version");
+
+}  // namespace
 
 Card::LwipStart::LwipStart(const CardDevices& devices) {
   BindLwipPlatform(devices.clock, devices.random, devices.diagnostics, devices.fatal);
@@ -19,6 +27,7 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
       netif_(devices.port),
       ring_(netif_, devices.clock),
       addressing_(netif_, devices.clock, devices.random),
+      lldp_(netif_, addressing_, devices.clock, kLldpSystemDescription),
       loop_(devices.clock, devices.waiter, netif_),
       proxy_(devices.drive_serial, drive_link::LinkConfig{}, drive_link::ProxyConfig{}),
       proxy_service_(proxy_),
@@ -48,7 +57,9 @@ Card::Card(const CardDevices& devices, const CardOptions& options)
   netif_.Start(Ipv4Config{}, nullptr);
   netif_.SetObserver(&addressing_);
   netif_.SetSwitchProtocol(&ring_);
+  netif_.SetPortFrameHandler(&lldp_);
   web_status_.SetWebCounters(http_server_, web_service_);
+  web_status_.SetLldp(lldp_.agent());
 }
 
 base::Status Card::Start() {
@@ -66,6 +77,7 @@ base::Status Card::Start() {
   }
   for (ConfigurableService* front_end : {static_cast<ConfigurableService*>(&web_service_),
                                          static_cast<ConfigurableService*>(&addressing_),
+                                         static_cast<ConfigurableService*>(&lldp_),
                                          static_cast<ConfigurableService*>(&indicators_)}) {
     if (base::Status added = publisher_.AddFrontEnd(*front_end); !added.ok()) return added;
   }
@@ -87,8 +99,8 @@ base::Status Card::Start() {
   }
   for (Service* service : {static_cast<Service*>(&parameter_writer_), static_cast<Service*>(&web_application_),
                            static_cast<Service*>(&web_service_), static_cast<Service*>(&publisher_),
-                           static_cast<Service*>(&addressing_), static_cast<Service*>(&indicators_),
-                           static_cast<Service*>(&ring_)}) {
+                           static_cast<Service*>(&addressing_), static_cast<Service*>(&lldp_),
+                           static_cast<Service*>(&indicators_), static_cast<Service*>(&ring_)}) {
     if (base::Status added = add(*service, PollWhen::kDueOrEvent); !added.ok()) return added;
   }
   loop_.SetEventProbe(&drive_events_);

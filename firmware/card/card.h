@@ -22,6 +22,7 @@
 #include "base/status.h"
 #include "card_addressing.h"
 #include "card_indicators.h"
+#include "card_lldp.h"
 #include "card_netif.h"
 #include "card_records.h"
 #include "card_ring.h"
@@ -129,6 +130,7 @@ class Card {
   const hal::Clock& clock() const { return clock_; }
   const CardAddressing& addressing() const { return addressing_; }
   const CardRing& ring() const { return ring_; }
+  const CardLldp& lldp() const { return lldp_; }
   EventLoop& loop() { return loop_; }
   const drive_link::RegisterProxy& proxy() const { return proxy_; }
   const modbus::Server& modbus_server() const { return modbus_server_; }
@@ -207,6 +209,7 @@ class Card {
   CardNetif netif_;
   CardRing ring_;
   CardAddressing addressing_;
+  CardLldp lldp_;
   EventLoop loop_;
   ResetLatch reset_;
   drive_link::RegisterProxy proxy_;

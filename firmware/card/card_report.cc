@@ -215,6 +215,35 @@ void ReportRing(const Card& card, ReportSink& out) {
   out.Value({"switch.protocol_frames"}, card.netif().counters().switch_protocol_frames);
 }
 
+// lldp.* counters, then one line per neighbour: "lldp.L.0 chassis=... port=... ttl=... name=... mgmt=...".
+void ReportLldp(const net::LldpAgent& agent, ReportSink& out) {
+  const net::LldpCounters& c = agent.counters();
+  out.Value({"lldp.frames_in"}, c.frames_in);
+  out.Value({"lldp.frames_out"}, c.frames_out);
+  out.Value({"lldp.malformed"}, c.malformed);
+  out.Value({"lldp.table_full"}, c.table_full);
+  out.Value({"lldp.aged_out"}, c.aged_out);
+  out.Value({"lldp.neighbours"}, agent.neighbours().size());
+  std::array<std::uint64_t, net::kLldpPorts> per_port{};
+  for (const net::LldpNeighbour& n : agent.neighbours()) {
+    const char letter[] = {hal::PortLetter(static_cast<hal::PortId>(n.port)), '\0'};
+    hal::TextLine line;
+    line.Text("lldp.").Text(letter).Text(".").Unsigned(per_port[n.port]++).Text(" chassis=");
+    DescribeLldpId(n.info.chassis, true, line);
+    line.Text(" port=");
+    DescribeLldpId(n.info.port, false, line);
+    line.Text(" ttl=").Unsigned(n.info.ttl_seconds).Text(" name=");
+    DescribeLldpText(n.info.system_name.view(), line);
+    line.Text(" mgmt=");
+    if (n.info.management.IsUnspecified()) {
+      line.Text("none");
+    } else {
+      line.Ipv4(n.info.management);
+    }
+    out.Line(line.view());
+  }
+}
+
 void ReportPool(ReportSink& out, std::string_view name, const base::PoolStats& pool) {
   out.Value({"pool.", name, ".used"}, pool.used);
   out.Value({"pool.", name, ".capacity"}, pool.capacity);
@@ -335,6 +364,7 @@ void ReportCardStats(const Card& card, ReportSink& out) {
   out.Value({"params.failed"}, w.failed);
   ReportNetwork(card, out);
   ReportRing(card, out);
+  ReportLldp(card.lldp().agent(), out);
   ReportPools(card, out);
 }
 

@@ -34,7 +34,8 @@ void ReportLoopStats(const EventLoop& loop, ReportSink& out);
 // netif.*, port.L.* / port.R.*, and lwIP's protocol, heap, pool and TCP PCB counters (lwip.*).
 void ReportNetifStats(const CardNetif& netif, ReportSink& out);
 // Everything else the card counts: drive.*, proxy.*, modbus.*, eip.*, cip.*, io.*, params.*, addr.*,
-// switch.*, and every fixed pool as pool.<name>.used/capacity/high_water/refused.
+// switch.*, lldp.* (counters and one `lldp.L.0 chassis=... port=... ttl=... name=... mgmt=...` line per
+// neighbour), and every fixed pool as pool.<name>.used/capacity/high_water/refused.
 void ReportCardStats(const Card& card, ReportSink& out);
 // `config`: loaded=, one `name=value` line per setting in force, then `problem=<number> <value> <kind>`.
 void ReportCardConfig(const Card& card, ReportSink& out);

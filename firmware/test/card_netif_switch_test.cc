@@ -1,7 +1,8 @@
 // CardNetif with two ports and its internal switch (net::FrameSwitch in the frame path, seed 000 §2.3):
 // frames for other stations pass between L and R without reaching lwIP, group frames go to both lwIP and
 // the other port, the card's own frames go out of the port the destination was learned on, a port's
-// link-down forgets its stations, and the observer sees what the card gets and each link-up edge.
+// link-down forgets its stations, and the observer sees what the card gets and each link-up edge; the
+// port frame handler takes its frames (LLDP) with their port before lwIP; SendFrameOn uses one port.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -43,6 +44,26 @@ Bytes EchoRequest(const base::MacAddress& destination, const base::MacAddress& s
 bool IsEchoReplyTo(const Bytes& f, const base::MacAddress& destination) {
   return f.size() >= 35 && std::equal(destination.begin(), destination.end(), f.begin()) && Get16(f, 12) == 0x0800 &&
          f[23] == 1 && f[34] == 0;
+}
+
+// Takes LLDP frames (EtherType 0x88CC), as CardLldp does.
+class RecordingPortHandler final : public PortFrameHandler {
+ public:
+  bool TakeFrame(PortId port, std::span<const std::uint8_t> frame) override {
+    if (frame.size() < 14 || Get16(frame, 12) != 0x88CC) return false;
+    taken.push_back({port, Bytes(frame.begin(), frame.end())});
+    return true;
+  }
+  std::vector<hal::test::FakeFramePort::Sent> taken;
+};
+
+Bytes LldpFrame(const base::MacAddress& source) {
+  Bytes lldp;
+  PutMac(lldp, {0x01, 0x80, 0xC2, 0x00, 0x00, 0x0E});
+  PutMac(lldp, source);
+  Put16(lldp, 0x88CC);
+  lldp.resize(60, 0);
+  return lldp;
 }
 
 class CardNetifSwitchTest : public ::testing::Test {
@@ -137,15 +158,43 @@ TEST_F(CardNetifSwitchTest, EchoFromALearnedStation_AnsweredOutOfItsPortOnly) {
 }
 
 TEST_F(CardNetifSwitchTest, ReservedGroupAddress_CardOnly) {
-  Bytes lldp;
-  PutMac(lldp, {0x01, 0x80, 0xC2, 0x00, 0x00, 0x0E});
-  PutMac(lldp, kStationA);
-  Put16(lldp, 0x88CC);
-  lldp.resize(60, 0);
-  Pump(lldp, PortId::kLeft);
+  Pump(LldpFrame(kStationA), PortId::kLeft);
   EXPECT_TRUE(port_.sent().empty());
   EXPECT_EQ(netif_.traffic(PortId::kRight).forwarded, 0u);
   EXPECT_EQ(observer_.frames.size(), 1u);
+}
+
+TEST_F(CardNetifSwitchTest, PortFrameHandler_TakesItsFramesWithTheirPort_OthersGoToLwip) {
+  RecordingPortHandler handler;
+  netif_.SetPortFrameHandler(&handler);
+  const Bytes lldp = LldpFrame(kStationA);
+  Pump(lldp, PortId::kRight);
+  ASSERT_EQ(handler.taken.size(), 1u);
+  EXPECT_EQ(handler.taken[0].port, PortId::kRight);
+  EXPECT_EQ(handler.taken[0].bytes, lldp);
+  EXPECT_EQ(observer_.frames.size(), 1u);      // the observer still reads it first
+  EXPECT_EQ(netif_.counters().rx_frames, 0u);  // but lwIP does not get it
+  Pump(ArpFrameBytes(1, base::kBroadcastMac, kStationA, kStationA, kIpA, base::kZeroMac, kCardIp), PortId::kLeft);
+  EXPECT_EQ(handler.taken.size(), 1u);
+  EXPECT_EQ(netif_.counters().rx_frames, 1u);
+  netif_.SetPortFrameHandler(nullptr);
+}
+
+TEST_F(CardNetifSwitchTest, SendFrameOn_OnePortOnly_FalseWithoutLink) {
+  const Bytes lldp = LldpFrame(kCardMac);
+  const PortTraffic left = netif_.traffic(PortId::kLeft);
+  const PortTraffic right = netif_.traffic(PortId::kRight);  // the start-up gratuitous ARP went out of both
+  ASSERT_TRUE(netif_.SendFrameOn(PortId::kRight, lldp));
+  ASSERT_EQ(port_.sent().size(), 1u);
+  EXPECT_EQ(port_.sent()[0].port, PortId::kRight);
+  EXPECT_EQ(netif_.traffic(PortId::kRight).out_nucast, right.out_nucast + 1);
+  EXPECT_EQ(netif_.traffic(PortId::kLeft).out_nucast, left.out_nucast);
+  const NetifCounters before = netif_.counters();
+  port_.SetLink(PortId::kRight, false);
+  EXPECT_FALSE(netif_.SendFrameOn(PortId::kRight, lldp));
+  EXPECT_EQ(port_.sent().size(), 1u);
+  EXPECT_EQ(netif_.counters().tx_dropped, before.tx_dropped + 1);
+  EXPECT_EQ(netif_.counters().tx_frames, before.tx_frames);
 }
 
 TEST_F(CardNetifSwitchTest, PortLinkDown_ForgetsItsStations_LinkUpToldToTheObserver) {

@@ -293,6 +293,8 @@ async function main() {
     await sleep(300);
     await shot(sub);
   }
+  // The statistics page (the last one visited) has the LLDP table; the loopback port has no neighbour.
+  await waitText('#lldp-none', (t) => t === 'No LLDP neighbour.', 'LLDP neighbours on the statistics page');
   ok(`pages visited: ${pages.map((p) => p[1]).join(', ')}`);
 
   await goTo('network', 'network', '#net-ip-value');

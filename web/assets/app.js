@@ -831,6 +831,15 @@
     for (const [k, v] of nested) out.push(...kvTables(v, title ? `${title}.${k}` : k));
     return out;
   }
+  // LLDP neighbours heard on the card's ports (docs/network.md "LLDP"), then the LLDP counters
+  function lldpSection(lldp) {
+    const { neighbours = [], ...counters } = lldp;
+    return section('LLDP neighbours', neighbours.length ? table(['Port', 'Chassis ID', 'Port ID', 'System name',
+      'Management address', 'TTL'], neighbours.map((n, i) => el('tr', { id: `lldp-${i}` },
+      el('td', { text: n.port }), el('td', { class: 'mono', text: n.chassis }), el('td', { class: 'mono', text: n.port_id }),
+      el('td', { text: n.name }), el('td', { class: 'mono', text: n.mgmt || '-' }), el('td', { class: 'num', text: `${n.ttl} s` }))))
+      : el('p', { id: 'lldp-none', class: 'muted', text: 'No LLDP neighbour.' }), el('div', { class: 'kvs' }, kvTables(counters, '')));
+  }
   function statistics(page) {
     const status = statusLine(page);
     const box = el('div');
@@ -843,11 +852,12 @@
         el('p', { id: `stat-port-${p.port}`, class: p.link ? 'ok' : 'muted',
           text: p.link ? `link up, ${p.speed} Mbit/s, ${p.full_duplex ? 'full' : 'half'} duplex` : 'no link' }),
         el('div', { class: 'kvs' }, kvTables(p.counters || {}, ''))));
-      const rest = Object.fromEntries(Object.entries(s).filter(([k]) => !['ports', 'lwip', 'ring'].includes(k)));
+      const rest = Object.fromEntries(Object.entries(s).filter(([k]) => !['ports', 'lwip', 'ring', 'lldp'].includes(k)));
       box.replaceChildren(el('div', { class: 'cards' }, ports),
         s.ring ? section('Ring (DLR)', el('p', { id: 'stat-ring', class: s.ring.network_status === 'normal' ? 'ok' : 'warn',
           text: `${s.ring.topology}, ${s.ring.network_status}, supervisor ${s.ring.supervisor}` }),
           el('div', { class: 'kvs' }, kvTables(s.ring, ''))) : '',
+        s.lldp ? lldpSection(s.lldp) : '',
         s.lwip ? section('lwIP', el('div', { class: 'kvs' }, kvTables(s.lwip, ''))) : '',
         Object.keys(rest).length ? section('Other', el('div', { class: 'kvs' }, kvTables(rest, ''))) : '');
     });
