@@ -26,6 +26,7 @@ after the common header. Destinations: 01-21-6C-00-00-01 Beacon, -02 Neighbor_Ch
 -03 Announce, Locate_Fault and Flush_Tables, -05 Learning_Update.
 """
 import collections
+import ctypes
 import queue
 import select
 import socket
@@ -35,6 +36,7 @@ import threading
 import time
 
 ETH_P_ALL = 0x0003
+SO_ATTACH_FILTER = 26
 SO_TIMESTAMPNS = 35  # not exported by Python's socket module
 ETHERTYPE_DLR = 0x80E1
 ETHERTYPE_VLAN = 0x8100
@@ -50,6 +52,7 @@ NAMES = {BEACON: "beacon", NEIGHBOR_REQUEST: "neighbor_check_request", NEIGHBOR_
          SIGN_ON: "sign_on", ADVERTISE: "advertise", FLUSH_TABLES: "flush_tables",
          LEARNING_UPDATE: "learning_update"}
 RING_NORMAL, RING_FAULT = 1, 2
+FLOOD_SOURCE = "02:00:00:ba:d0:01"  # the flood's frames come from this MAC
 PAYLOAD_AFTER_HEADER = 30
 
 
@@ -115,6 +118,33 @@ def build(destination, source, kind, source_port, source_ip, sequence, fields=b"
         struct.pack(">I", sequence) + body
 
 
+def _dlr_filter(ignore_source=None):
+    """A classic BPF program (and the buffer it lives in) for the supervisor's sockets: DLR frames only
+    (EtherType 0x80E1 at offset 12: the kernel hands a tag over out of band); with `ignore_source`, none from
+    that MAC and no Neighbor_Check response (frame type 3 at offset 16) either."""
+    def op(code, jt, jf, k):
+        return struct.pack("HBBI", code, jt, jf, k)
+    drop, accept = op(0x06, 0, 0, 0), op(0x06, 0, 0, 0x40000)
+    if ignore_source is None:
+        program = [op(0x28, 0, 0, 12), op(0x15, 0, 1, ETHERTYPE_DLR), accept, drop]
+    else:
+        program = [
+            op(0x28, 0, 0, 12),                                         # 0: A = EtherType
+            op(0x15, 0, 7, ETHERTYPE_DLR),                              # 1: not DLR -> 9 (drop)
+            op(0x20, 0, 0, 6),                                          # 2: A = source MAC, high 4 bytes
+            op(0x15, 0, 2, int.from_bytes(ignore_source[:4], "big")),   # 3: other -> 6
+            op(0x28, 0, 0, 10),                                         # 4: A = source MAC, low 2 bytes
+            op(0x15, 3, 0, int.from_bytes(ignore_source[4:], "big")),   # 5: ignored source -> 9 (drop)
+            op(0x30, 0, 0, 16),                                         # 6: A = DLR frame type
+            op(0x15, 1, 0, NEIGHBOR_RESPONSE),                          # 7: a response -> 9 (drop)
+            accept,                                                     # 8
+            drop,                                                       # 9
+        ]
+    code = b"".join(program)
+    buffer = ctypes.create_string_buffer(code)
+    return struct.pack("HL", len(program), ctypes.addressof(buffer)), buffer
+
+
 def beacon_fields(ring_state, precedence, interval_us, timeout_us):
     return struct.pack(">BBII", ring_state, precedence, interval_us, timeout_us)
 
@@ -122,7 +152,8 @@ def beacon_fields(ring_state, precedence, interval_us, timeout_us):
 class RingSupervisor:
     """The supervisor on two interfaces, `ports` = (name of port 1, name of port 2)."""
 
-    def __init__(self, ports, mac, ip, interval_us=2000, timeout_us=None, precedence=200, on_state=None):
+    def __init__(self, ports, mac, ip, interval_us=2000, timeout_us=None, precedence=200, on_state=None,
+                 ignore_source=None):
         self.ports = ports
         self.mac = mac_bytes(mac) if isinstance(mac, str) else mac
         self.ip = ip
@@ -152,8 +183,14 @@ class RingSupervisor:
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._sockets = []
+        # Every frame of the port (a socket for one protocol would not see what a bridge port takes in),
+        # filtered in the kernel to DLR frames, and with `ignore_source` without that MAC's frames and
+        # Neighbor_Check responses: in the flood test the supervisor must not spend the machine's CPU (nor
+        # the card's, which pays for each copy when it writes) on the flood.
+        self._filter = _dlr_filter(mac_bytes(ignore_source) if ignore_source else None)
         for name in ports:
             s = socket.socket(socket.AF_PACKET, socket.SOCK_RAW, socket.htons(ETH_P_ALL))
+            s.setsockopt(socket.SOL_SOCKET, SO_ATTACH_FILTER, self._filter[0])
             s.bind((name, 0))
             s.setsockopt(socket.SOL_SOCKET, SO_TIMESTAMPNS, 1)
             s.setblocking(False)
@@ -326,7 +363,7 @@ def flood(iface, seconds, rate):
     a Sign_On whose count runs past its end). Prints what it sent."""
     raw = socket.socket(socket.AF_PACKET, socket.SOCK_RAW)
     raw.bind((iface, 0))
-    rogue = bytes.fromhex("020000bad001")
+    rogue = mac_bytes(FLOOD_SOURCE)
     frames = [
         build(NEIGHBOR_MAC, rogue, NEIGHBOR_REQUEST, 1, "10.0.0.9", 7),
         build(ANNOUNCE_MAC, rogue, LOCATE_FAULT, 1, "10.0.0.9", 8),

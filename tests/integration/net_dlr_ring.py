@@ -110,11 +110,13 @@ def dlr_get(client, attribute):
 def main():
     set_up_bridge()
     ctl = SimControl(CONTROL)
+    flood_phase = os.environ.get("DLR_PHASE", "ring") == "flood"
     sup = dlr.RingSupervisor((TAP_L, TAP_R), SUPERVISOR_MAC, HOST_IP, interval_us=INTERVAL_US, timeout_us=TIMEOUT_US,
-                             precedence=200, on_state=lambda state: block_port2(state == dlr.RING_NORMAL))
+                             precedence=200, on_state=lambda state: block_port2(state == dlr.RING_NORMAL),
+                             ignore_source=dlr.FLOOD_SOURCE if flood_phase else None)
     sup.start()
     try:
-        if os.environ.get("DLR_PHASE", "ring") == "flood":
+        if flood_phase:
             if not sup.wait_state(dlr.RING_NORMAL, 3.0):
                 fail(f"ring not normal: own beacons back {sup.beacons_back}")
             wait_until("the card in ring normal", lambda: stats(ctl).get("dlr.state") == "normal", 3.0)
