@@ -267,7 +267,8 @@ def run(ctl, sup):
             fail(f"no Neighbor_Check request on port {port + 1} after Locate_Fault")
     time.sleep(0.5)
     if sup.frames(dlr.LINK_STATUS, since_ns=since):
-        fail(f"a status after Locate_Fault with both neighbours answering: {sup.frames(dlr.LINK_STATUS, since_ns=since)}")
+        fail(f"a status after Locate_Fault with both neighbours answering: "
+             f"{sup.frames(dlr.LINK_STATUS, since_ns=since)}")
     sup.answer_neighbor_checks[1] = False
     since = time.time_ns()
     sup.send(0, dlr.ANNOUNCE_MAC, dlr.LOCATE_FAULT)
@@ -326,7 +327,8 @@ def flood(ctl, sup):
     if st["n"] < 0.9 * seconds * 1e6 / rpi:
         fail(f"only {st['n']} T->O intervals in {seconds} s")
     if st["max"] >= timeout_us or delta["cip.connection_timeouts"] != 0:
-        fail(f"a T->O gap of {st['max']:.0f} us (timeout {timeout_us} us), timeouts +{delta['cip.connection_timeouts']}")
+        fail(f"a T->O gap of {st['max']:.0f} us (timeout {timeout_us} us), "
+             f"timeouts +{delta['cip.connection_timeouts']}")
     if delta["cip.missed_productions"] > 2:
         fail(f"the card skipped {delta['cip.missed_productions']} production slots during the ring flood")
     if delta["dlr.frames_in"] < 10_000 or delta["dlr.malformed"] == 0:
