@@ -31,6 +31,10 @@
 #include "lwip/netif.h"
 #include "net/frame_switch.h"
 
+namespace cip {
+struct QosSettings;
+}  // namespace cip
+
 namespace firmware {
 
 struct Ipv4Config {
@@ -90,6 +94,9 @@ class CardNetif final : private ArpCacheQuery {
 
   // At most one observer (null: none).
   void SetObserver(NetifObserver* observer) { observer_ = observer; }
+  // The QoS values in force (outliving the netif; null: none): with 802.1Q tagging on, lwIP's frames
+  // of a CIP traffic class leave with a priority tag (cip::InsertPriorityTag).
+  void SetQosTagging(const cip::QosSettings* qos) { qos_ = qos; }
   // Sends a frame the card builds itself (ACD's ARP probes) like lwIP's: by the switch's egress rule.
   // False when no port took it.
   bool SendFrame(std::span<const std::uint8_t> frame);
@@ -115,6 +122,7 @@ class CardNetif final : private ArpCacheQuery {
   hal::FramePort& port_;
   net::FrameSwitch switch_;
   NetifObserver* observer_ = nullptr;
+  const cip::QosSettings* qos_ = nullptr;
   std::array<bool, hal::kMaxPorts> port_up_{};
   ArpGuard arp_guard_;
   netif netif_{};

@@ -228,6 +228,7 @@ struct ConnectionCard {
     IoDatagram datagram;
     if (!cm.TakeDueProduction(now, datagram)) return {};
     last_to = datagram.to;
+    last_priority = datagram.priority;
     return Of(datagram.bytes);
   }
 
@@ -241,6 +242,7 @@ struct ConnectionCard {
   base::Ipv4Address originator = kOriginator;  // the IP address requests come from
   hal::Micros now = 1000000;
   Ipv4Endpoint last_to;
+  ConnectionPriority last_priority = ConnectionPriority::kLow;
 };
 
 }  // namespace cip::test

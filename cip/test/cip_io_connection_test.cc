@@ -227,6 +227,25 @@ TEST_F(CipIoConnectionTest, ProducesToTheRequestedPortAndToMulticast) {
   EXPECT_TRUE(card_.Take().empty());
 }
 
+TEST_F(CipIoConnectionTest, ProductionsCarryTheTtoOPriorityOfTheirForwardOpen) {
+  OpenParams params;
+  params.t_to_o.priority = ConnectionPriority::kUrgent;
+  params.o_to_t.priority = ConnectionPriority::kLow;  // the O->T direction is the originator's
+  ASSERT_EQ(card_.Open(params)[2], 0x00);
+  ASSERT_FALSE(card_.Take().empty());
+  EXPECT_EQ(card_.last_priority, ConnectionPriority::kUrgent);
+
+  OpenParams high;
+  high.triad.connection_serial = 2;
+  high.o_to_t.size = 2;
+  high.t_to_o.size = 6;
+  high.t_to_o.priority = ConnectionPriority::kHigh;
+  high.path = Hex("20 04 24 01 2C C6 2C 97");
+  ASSERT_EQ(card_.Open(high)[2], 0x00);
+  ASSERT_FALSE(card_.Take().empty());
+  EXPECT_EQ(card_.last_priority, ConnectionPriority::kHigh);
+}
+
 TEST_F(CipIoConnectionTest, HeartbeatConnectionsFeedTheirWatchdogWithoutData) {
   OpenParams input;
   input.o_to_t.size = 2;

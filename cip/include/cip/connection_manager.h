@@ -181,6 +181,7 @@ class ConnectionManager final : public AttributeHandler,
     Ipv4Endpoint to;
     bool multicast = false;
     std::size_t multicast_index = 0;
+    ConnectionPriority priority = ConnectionPriority::kLow;
     std::uint32_t api = 0;
     std::uint16_t size = 0;
     hal::Micros next = 0;
