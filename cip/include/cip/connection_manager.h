@@ -180,8 +180,8 @@ class ConnectionManager final : public AttributeHandler,
     std::uint32_t connection_id = 0;
     Ipv4Endpoint to;
     bool multicast = false;
+    ConnectionPriority priority = ConnectionPriority::kLow;  // T->O: the DSCP of the productions
     std::size_t multicast_index = 0;
-    ConnectionPriority priority = ConnectionPriority::kLow;
     std::uint32_t api = 0;
     std::uint16_t size = 0;
     hal::Micros next = 0;
