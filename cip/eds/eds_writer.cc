@@ -14,6 +14,7 @@
 #include "cip/identity_object.h"
 #include "cip/message_router_object.h"
 #include "cip/port_object.h"
+#include "cip/qos_object.h"
 #include "cip/tcpip_interface_object.h"
 #include "drive_link/parameter_table.h"
 
@@ -362,6 +363,7 @@ void WriteTail(Text& out) {
   WriteClass("TCP/IP Interface Class", "TCP/IP Interface Object", kTcpIpClassRevision, kClassTcpIpInterface, 1, out);
   WriteClass("Ethernet Link Class", "Ethernet Link Object", kEthernetLinkClassRevision, kClassEthernetLink,
              kEthernetLinkInstances, out);
+  WriteClass("QoS Class", "QoS Object", kQosClassRevision, kClassQos, 1, out);
 }
 
 }  // namespace
