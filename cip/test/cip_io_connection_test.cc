@@ -212,12 +212,8 @@ TEST_F(CipIoConnectionTest, ProducesToTheRequestedPortAndToMulticast) {
   EXPECT_EQ(card_.last_to, (Ipv4Endpoint{test::kOriginator, 2300}));
 
   // Multicast: one datagram per API for all the connections sharing it.
-  OpenParams input;
-  input.triad.connection_serial = 2;
-  input.o_to_t.size = 2;
-  input.t_to_o.size = 6;
+  OpenParams input = test::InputOnly151(2);
   input.t_to_o.type = ConnectionType::kMulticast;
-  input.path = Hex("20 04 24 01 2C C6 2C 97");
   ASSERT_EQ(card_.Open(input)[2], 0x00);
   input.triad.connection_serial = 3;
   input.path = Hex("20 04 24 01 2C C7 2C 97");
@@ -235,12 +231,8 @@ TEST_F(CipIoConnectionTest, ProductionsCarryTheTtoOPriorityOfTheirForwardOpen) {
   ASSERT_FALSE(card_.Take().empty());
   EXPECT_EQ(card_.last_priority, ConnectionPriority::kUrgent);
 
-  OpenParams high;
-  high.triad.connection_serial = 2;
-  high.o_to_t.size = 2;
-  high.t_to_o.size = 6;
+  OpenParams high = test::InputOnly151(2);
   high.t_to_o.priority = ConnectionPriority::kHigh;
-  high.path = Hex("20 04 24 01 2C C6 2C 97");
   ASSERT_EQ(card_.Open(high)[2], 0x00);
   ASSERT_FALSE(card_.Take().empty());
   EXPECT_EQ(card_.last_priority, ConnectionPriority::kHigh);

@@ -15,21 +15,6 @@ namespace {
 using test::Bytes;
 using test::Hex;
 
-class FakeQos final : public QosProvider {
- public:
-  QosSettings StoredQos() const override { return stored; }
-  base::Status StoreQos(const QosSettings& settings) override {
-    if (!store_status.ok()) return store_status;
-    stored = settings;
-    ++stores;
-    return base::OkStatus();
-  }
-
-  QosSettings stored;
-  base::Status store_status = base::OkStatus();
-  int stores = 0;
-};
-
 Bytes GetQos(std::uint8_t attribute) { return {0x0E, 0x03, 0x20, 0x48, 0x24, 0x01, 0x30, attribute}; }
 Bytes SetQos(std::uint8_t attribute, const Bytes& value) {
   return test::Concat({0x10, 0x03, 0x20, 0x48, 0x24, 0x01, 0x30, attribute}, value);
@@ -42,7 +27,7 @@ class CipQosTest : public ::testing::Test {
   CipQosTest() { EXPECT_TRUE(card_.cip.objects().Register(object_.object()).ok()); }
 
   test::FakeCard card_;
-  FakeQos qos_;
+  test::FakeQos qos_;
   QosObject object_{qos_};
 };
 
@@ -91,7 +76,7 @@ TEST_F(CipQosTest, BadValuesAreRefusedWithExactCodesAndNothingIsStored) {
 }
 
 TEST_F(CipQosTest, AStoreFailureIsAnsweredAndTheOldValueStays) {
-  qos_.store_status = base::Internal();
+  qos_.store_result = base::Internal();
   EXPECT_EQ(card_.Ask(SetQos(8, {0x0A})), Hex("90 00 19 00"));
   EXPECT_EQ(card_.Ask(GetQos(8)), Hex("8E 00 00 00 1B"));
 }

@@ -75,12 +75,8 @@ TEST_F(IoServiceTest, ProductionsCarryTheDscpOfTheirPriority) {
   EXPECT_EQ(peer.received[1].tos, 47 << 2);  // DSCP Scheduled, default 47
 
   qos.values[static_cast<std::size_t>(cip::QosAttribute::kDscpScheduled) - 1] = 20;
-  OpenParams urgent;
-  urgent.triad.connection_serial = 2;
-  urgent.o_to_t.size = 2;
-  urgent.t_to_o.size = 6;
+  OpenParams urgent = cip::test::InputOnly151(2);
   urgent.t_to_o.priority = cip::ConnectionPriority::kUrgent;
-  urgent.path = Hex("20 04 24 01 2C C6 2C 97");
   ASSERT_EQ(Open(urgent).at(2), 0x00);
   Pump();
   ASSERT_EQ(peer.received.size(), 3U);

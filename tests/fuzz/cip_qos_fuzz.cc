@@ -20,16 +20,6 @@ void Require(bool condition) {
   if (!condition) __builtin_trap();
 }
 
-class FakeQos final : public cip::QosProvider {
- public:
-  cip::QosSettings StoredQos() const override { return stored; }
-  base::Status StoreQos(const cip::QosSettings& settings) override {
-    stored = settings;
-    return base::OkStatus();
-  }
-  cip::QosSettings stored;
-};
-
 void CheckTag(const cip::QosSettings& settings, std::span<const std::uint8_t> frame, std::size_t spare) {
   std::vector<std::uint8_t> buffer(frame.begin(), frame.end());
   buffer.resize(frame.size() + spare, 0xA5);
@@ -59,7 +49,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   CheckTag(settings, std::span<const std::uint8_t>(data + 11 + set_length, size - 11 - set_length), spare);
 
   cip::test::FakeCard card;
-  FakeQos qos;
+  cip::test::FakeQos qos;
   cip::QosObject object(qos);
   Require(card.cip.objects().Register(object.object()).ok());
   const cip::test::Bytes request = cip::test::Concat({0x10, 0x03, 0x20, 0x48, 0x24, 0x01, 0x30, attribute},
