@@ -1,6 +1,6 @@
 """QoS object 0x48 end to end (docs/network.md "QoS (DSCP)"), run by qos_dscp.sh in a namespace with the
-card's --pcap capture. tshark reads copies of the capture taken at the end of each phase (the card's
-capture starts anew at each restart):
+card's --pcap capture (host card or the board image under QEMU). tshark reads copies of the capture taken
+at the end of each phase; a phase after a reset looks only at the frames after its start:
 
   defaults  Get of attributes 1-8 (59/47/55/47/43/31/27, tag off); a class 1 connection whose T->O
             priority is scheduled produces with DSCP 47, one with urgent with DSCP 55; the card's TCP 44818
@@ -67,15 +67,23 @@ def snapshot(name):
     return path
 
 
-def fields(pcap, display_filter, *names):
+def frames_so_far():
+    """How many frames the capture holds now. A phase looks only at the frames after it: the host card's
+    capture starts anew at a restart, QEMU's (the board image) goes on."""
+    return len(fields(snapshot("mark"), "frame", "frame.number"))
+
+
+def fields(pcap, display_filter, *names, after=0):
+    if after:
+        display_filter = f"frame.number > {after} && ({display_filter})"
     out = subprocess.run(["tshark", "-r", pcap, "-Y", display_filter, "-T", "fields", "-E", "separator=/"]
                          + [a for n in names for a in ("-e", n)], capture_output=True, text=True, timeout=60)
     return [line for line in out.stdout.splitlines() if line]
 
 
-def values_of(pcap, display_filter, name, at_least=1):
+def values_of(pcap, display_filter, name, at_least=1, after=0):
     """The distinct values of one field over the frames the filter selects (at least `at_least` frames)."""
-    rows = fields(pcap, display_filter, name)
+    rows = fields(pcap, display_filter, name, after=after)
     if len(rows) < at_least:
         fail(f"{pcap}: only {len(rows)} frames match '{display_filter}'")
     return sorted(set(rows))
@@ -153,13 +161,13 @@ def identity_reset():
             fail("the card does not answer ListIdentity within 10 s of its restart")
 
 
-def check_marks(pcap, scheduled_id, scheduled, urgent_id, urgent, explicit, what):
+def check_marks(pcap, after, scheduled_id, scheduled, urgent_id, urgent, explicit, what):
     same(f"{what}: DSCP of the scheduled connection's productions",
          values_of(pcap, io_filter(scheduled_id), "ip.dsfield.dscp", 10), [str(scheduled)])
     same(f"{what}: DSCP of the urgent connection's productions",
          values_of(pcap, io_filter(urgent_id), "ip.dsfield.dscp", 10), [str(urgent)])
     same(f"{what}: DSCP of the card's explicit messaging (TCP and UDP 44818)",
-         values_of(pcap, explicit_filter(), "ip.dsfield.dscp", 5), [str(explicit)])
+         values_of(pcap, explicit_filter(), "ip.dsfield.dscp", 5, after=after), [str(explicit)])
     no_malformed(pcap)
 
 
@@ -175,7 +183,7 @@ def main():
             ask(c, get(1, instance=0), "8E 00 00 00 01 00", "class revision")
         traffic(ep, 0x51000001)
         pcap = snapshot("defaults")
-        check_marks(pcap, 0x51000001, 47, 0x51000002, 55, 27, "defaults")
+        check_marks(pcap, 0, 0x51000001, 47, 0x51000002, 55, 27, "defaults")
         same("defaults: no tagged frame from the card", fields(pcap, "vlan", "frame.number"), [])
         ok("defaults: class 1 scheduled DSCP 47, urgent 55, explicit TCP/UDP 44818 DSCP 27, no tag")
 
@@ -206,8 +214,9 @@ def main():
             c.register_session()
             ask(c, get(8), "8E 00 00 00 0A", "DSCP Explicit after the reset")
             ask(c, get(5), "8E 00 00 00 14", "DSCP Scheduled after the reset")
+        after = frames_so_far()
         traffic(ep, 0x52000001)
-        check_marks(snapshot("after_reset"), 0x52000001, 20, 0x52000002, 55, 10, "after the reset")
+        check_marks(snapshot("after_reset"), after, 0x52000001, 20, 0x52000002, 55, 10, "after the reset")
         ok("set explicit 10, scheduled 20: read back at once; after Identity Reset class 1 scheduled DSCP 20, "
            "urgent 55, explicit 10")
 
@@ -216,18 +225,22 @@ def main():
             c.register_session()
             ask(c, set_(1, b"\x01"), "90 00 00 00", "tag enable 1")
         identity_reset()
+        after = frames_so_far()
         traffic(ep, 0x53000001)
         pcap = snapshot("tagged")
-        check_marks(pcap, 0x53000001, 20, 0x53000002, 55, 10, "tagged")
+        check_marks(pcap, after, 0x53000001, 20, 0x53000002, 55, 10, "tagged")
         same("tagged: scheduled productions carry VLAN 0 priority 5",
              values_of(pcap, io_filter(0x53000001), "vlan.priority", 10), ["5"])
         same("tagged: urgent productions carry VLAN 0 priority 6",
              values_of(pcap, io_filter(0x53000002), "vlan.priority", 10), ["6"])
         same("tagged: every tag has VLAN ID 0", values_of(pcap, f"eth.src == {os.environ['CARD_MAC']} && vlan",
                                                            "vlan.id", 10), ["0"])
-        same("tagged: explicit replies carry priority 3", values_of(pcap, explicit_filter(), "vlan.priority", 5), ["3"])
+        same("tagged: explicit replies carry priority 3",
+             values_of(pcap, explicit_filter(), "vlan.priority", 5, after=after), ["3"])
         same("tagged: ARP from the card is not tagged",
              fields(pcap, f"arp && eth.src == {os.environ['CARD_MAC']} && vlan", "frame.number"), [])
+        same("tagged: the card's explicit replies after the reset are all tagged",
+             fields(pcap, f"{explicit_filter()} && !vlan", "frame.number", after=after), [])
         ok("tag enable 1 after Identity Reset: class 1 frames tagged VLAN 0 priority 5 (scheduled) and 6 (urgent), "
            "explicit 3, ARP untagged; the host's answers (untagged) reach the card")
     print(f"qos_dscp: {checks} checks passed")
