@@ -338,6 +338,7 @@ ForwardOpenSuccess ConnectionManager::Open(const Opening& opening, RequestContex
       producer.active = true;
       producer.point = opening.points.produced;
       producer.api = request.t_to_o_rpi;
+      producer.priority = request.t_to_o.priority;
       producer.size = opening.spec.produced_size;
       producer.next = context.now;
       if (request.t_to_o.type == ConnectionType::kMulticast) {

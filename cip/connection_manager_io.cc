@@ -92,6 +92,7 @@ bool ConnectionManager::TakeDueProduction(hal::Micros now, IoDatagram& out) {
   due->next = NextProductionSlot(due->next, due->api, now, missed_productions_);
   out.to = due->to;
   out.multicast = due->multicast;
+  out.priority = due->priority;
   out.bytes = writer.written();
   return true;
 }

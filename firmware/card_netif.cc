@@ -3,6 +3,7 @@
 #include <array>
 #include <cstring>
 
+#include "cip/qos_object.h"
 #include "ipv4_lwip.h"
 #include "lwip/etharp.h"
 #include "lwip/igmp.h"
@@ -74,9 +75,10 @@ err_t CardNetif::LinkOutput(pbuf* p) {
     ++counters_.tx_dropped;
     return ERR_BUF;
   }
-  const u16_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
+  std::size_t length = pbuf_copy_partial(p, frame.data(), p->tot_len, 0);
+  arp_guard_.NoteSent(std::span<const std::uint8_t>(frame.data(), length), sys_now());
+  if (qos_ != nullptr) length = cip::InsertPriorityTag(*qos_, frame, length);
   const std::span<const std::uint8_t> bytes(frame.data(), length);
-  arp_guard_.NoteSent(bytes, sys_now());
   // A frame no port took is lost like on a cable with no link; TCP retransmits, UDP does not care.
   SendFrame(bytes);
   return ERR_OK;

@@ -32,6 +32,10 @@
 #include "lwip/netif.h"
 #include "net/frame_switch.h"
 
+namespace cip {
+struct QosSettings;
+}  // namespace cip
+
 namespace firmware {
 
 struct Ipv4Config {
@@ -118,6 +122,9 @@ class CardNetif final : private ArpCacheQuery {
   void SetObserver(NetifObserver* observer) { observer_ = observer; }
   // At most one handler (null: none).
   void SetPortFrameHandler(PortFrameHandler* handler) { port_handler_ = handler; }
+  // The QoS values in force (outliving the netif; null: none): with 802.1Q tagging on, lwIP's frames
+  // of a CIP traffic class leave with a priority tag (cip::InsertPriorityTag).
+  void SetQosTagging(const cip::QosSettings* qos) { qos_ = qos; }
   // Sends a frame the card builds itself (ACD's ARP probes) like lwIP's: by the switch's egress rule.
   // False when no port took it.
   bool SendFrame(std::span<const std::uint8_t> frame);
@@ -157,6 +164,7 @@ class CardNetif final : private ArpCacheQuery {
   NetifObserver* observer_ = nullptr;
   SwitchProtocol* switch_protocol_ = nullptr;
   PortFrameHandler* port_handler_ = nullptr;
+  const cip::QosSettings* qos_ = nullptr;
   std::array<bool, hal::kMaxPorts> port_up_{};
   ArpGuard arp_guard_;
   netif netif_{};

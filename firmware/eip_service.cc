@@ -45,6 +45,7 @@ base::Status EipService::Start() {
     return tcp;
   }
   udp_ = udp;
+  udp_->tos = tos_;
   udp_recv(udp_, &EipService::OnUdp, this);
   return base::OkStatus();
 }
@@ -88,6 +89,7 @@ EipService::Slot* EipService::OpenConnection(tcp_pcb* pcb) {
       server_.OpenTcpConnection(Endpoint(&pcb->remote_ip, pcb->remote_port), clock_.NowMicros());
   if (!id.ok()) return nullptr;
   connection->id = *id;
+  pcb->tos = tos_;
   connection->input_size = 0;
   connection->close_after_reply = false;
   connection->pending = false;

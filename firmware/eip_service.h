@@ -40,6 +40,9 @@ namespace firmware {
 struct EipOptions {
   std::uint16_t port = cip::kEncapsulationPort;  // TCP and UDP
   TcpKeepalive keepalive;
+  // IP TOS of every packet of an accepted connection and of every UDP reply: the QoS object's DSCP
+  // Explicit, shifted past the ECN bits. (A SYN-ACK leaves before the connection is accepted: TOS 0.)
+  std::uint8_t tos = 0;
 };
 
 struct EipCounters {
@@ -70,7 +73,11 @@ class EipService final : public TcpService<EipService, EipConnection, cip::kMaxT
                          public ConfigurableService {
  public:
   EipService(cip::EncapsulationServer& server, const hal::Clock& clock, const EipOptions& options = {})
-      : TcpService(options.port, options.keepalive), server_(server), clock_(clock), udp_port_(options.port) {}
+      : TcpService(options.port, options.keepalive),
+        server_(server),
+        clock_(clock),
+        udp_port_(options.port),
+        tos_(options.tos) {}
   ~EipService() override;  // out of line: the skeleton's Stop() is instantiated once
 
   // Opens (c500 = 1) or closes (c500 = 0) the ports.
@@ -110,6 +117,7 @@ class EipService final : public TcpService<EipService, EipConnection, cip::kMaxT
   cip::EncapsulationServer& server_;
   const hal::Clock& clock_;
   std::uint16_t udp_port_;  // the same as the TCP listener's
+  std::uint8_t tos_;
   udp_pcb* udp_ = nullptr;
   // A reply tcp_write refused (one for all connections: while it waits, no connection is fed).
   std::array<std::uint8_t, cip::kMaxReplyMessage> held_reply_{};

@@ -23,6 +23,8 @@ EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const Ether
       tcpip_(devices.netif, devices.addressing, devices.writer, devices.store),
       links_(devices.netif, devices.writer),
       dlr_(devices.ring),
+      qos_(devices.store),
+      qos_object_(qos_),
       device_({identity_, tcpip_, links_, devices.reset, devices.random}),
       connections_(device_.router(), identity_, devices.random, options.connections),
       supervisor_(connections_, devices.proxy, devices.clock),
@@ -44,18 +46,23 @@ EtherNetIpCard::EtherNetIpCard(const EtherNetIpCardDevices& devices, const Ether
                       : cip::ServedFile{&eds_, kEdsFileName, cip::kMajorRevision, cip::kMinorRevision}),
       file_(served_eds_),
       drive_profile_config_(runtime_),
-      eip_(device_.encapsulation(), devices.clock, {.keepalive = options.keepalive}),
+      eip_(device_.encapsulation(), devices.clock,
+           {.keepalive = options.keepalive, .tos = cip::TosOfDscp(qos_.active()[cip::QosAttribute::kDscpExplicit])}),
       io_(connections_, devices.clock, tcpip_),
       assemblies_service_(assemblies_),
       front_ends_{&eip_, &io_, &tcpip_, &links_, &drive_profile_config_},
-      services_{&eip_, &io_, &assemblies_service_} {}
+      services_{&eip_, &io_, &assemblies_service_} {
+  io_.set_qos(&qos_.active());
+  devices.netif.SetQosTagging(&qos_.active());
+}
 
 base::Status EtherNetIpCard::Start() {
   if (base::Status status = cip::AttachConnectionManager(device_, connections_); !status.ok()) return status;
   if (base::Status status = assemblies_.Register(device_.assemblies()); !status.ok()) return status;
   for (cip::CipObject* object : {&control_supervisor_.object(), &ac_dc_drive_.object(), &motor_data_.object(),
                                  &parameters_64_.object(), &parameters_65_.object(), &parameters_0f_.object(),
-                                 &file_.object(), &dlr_.object()}) {
+                                 &file_.object(), &dlr_.object(),
+                                 &qos_object_.object()}) {
     if (base::Status status = device_.objects().Register(*object); !status.ok()) return status;
   }
   device_.encapsulation().set_request_lifecycle(&journal_);

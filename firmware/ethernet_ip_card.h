@@ -1,7 +1,8 @@
 // The card's whole EtherNet/IP side, assembled (docs/ethernetip.md "In the firmware"): the CIP objects
 // on the card's providers, the Connection Manager with the drive profile's assemblies, the drive
 // objects 0x0F/0x28/0x29/0x2A/0x64/0x65 on the deferred-reply journal, the File object 0x37 with the
-// card's EDS, the encapsulation server on TCP/UDP 44818 and class 1 I/O on UDP 2222. Device-path code:
+// card's EDS, the QoS object 0x48 (its values in force mark the I/O and explicit traffic and tag frames),
+// the encapsulation server on TCP/UDP 44818 and class 1 I/O on UDP 2222. Device-path code:
 // the host and a board build it the same way, from the HAL devices, the netif, the register proxy and the
 // parameter writer they already have.
 //
@@ -31,6 +32,8 @@
 #include "cip/drive/parameter_object.h"
 #include "cip/eds/eds_file.h"
 #include "cip/file_object.h"
+#include "card_qos.h"
+#include "cip/qos_object.h"
 #include "cip_connection_supervisor.h"
 #include "cip_providers.h"
 #include "configurable_service.h"
@@ -132,6 +135,8 @@ class EtherNetIpCard final : private DriveControlListener {
   CardTcpIp tcpip_;
   CardEthernetLinks links_;
   cip::DlrObject dlr_;
+  CardQos qos_;                   // the values in force mark class 1, explicit traffic and tags
+  cip::QosObject qos_object_;
   cip::CipDevice device_;
   cip::ConnectionManager connections_;
   CipConnectionSupervisor supervisor_;

@@ -2,6 +2,7 @@
 
 #include <span>
 
+#include "cip/qos_object.h"
 #include "lwip/pbuf.h"
 
 namespace firmware {
@@ -73,6 +74,7 @@ void IoService::Send(const cip::IoDatagram& datagram) {
   ip_addr_t address;
   ip_addr_set_ip4_u32_val(address, lwip_htonl(datagram.to.address.HostOrder()));
   if (datagram.multicast) udp_set_multicast_ttl(pcb_, ttl_.MulticastTtl());
+  pcb_->tos = qos_ == nullptr ? 0 : cip::TosOfDscp(cip::DscpForPriority(*qos_, datagram.priority));
   if (udp_sendto(pcb_, p, &address, datagram.to.port) == ERR_OK) {
     ++counters_.sent;
   } else {

@@ -7,6 +7,8 @@
 // - Poll sends every production that is due: point-to-point to the originator, multicast to the
 //   connection's group with the TTL of TCP/IP attribute 8. Production needs no IGMP membership (the
 //   card does not consume multicast); lwIP sends IGMP reports only for groups it joined.
+// - Each production's IP header carries the DSCP the QoS object gives the T->O priority of its
+//   connection (set_qos: the values in force; none: DSCP 0).
 // - NextDeadline is the manager's, so the event loop wakes for each production slot; the host waiter
 //   sleeps with microsecond resolution (hal/host/poll_waiter.cc) so slots are met to well under an RPI.
 #pragma once
@@ -16,6 +18,7 @@
 
 #include "base/status.h"
 #include "cip/connection_manager.h"
+#include "cip/providers.h"
 #include "configurable_service.h"
 #include "config/card_config.h"
 #include "event_loop.h"
@@ -51,6 +54,8 @@ class IoService final : public Service, public ConfigurableService {
   base::Status Start();
   void Stop();
   bool running() const { return pcb_ != nullptr; }
+  // The QoS values productions are marked with (outliving the service; null: DSCP 0).
+  void set_qos(const cip::QosSettings* qos) { qos_ = qos; }
 
   void Poll(hal::Micros now) override;
   hal::Micros NextDeadline() const override;
@@ -65,6 +70,7 @@ class IoService final : public Service, public ConfigurableService {
   cip::ConnectionManager& manager_;
   const hal::Clock& clock_;
   const MulticastTtlSource& ttl_;
+  const cip::QosSettings* qos_ = nullptr;
   std::uint16_t port_;
   udp_pcb* pcb_ = nullptr;
   IoCounters counters_;

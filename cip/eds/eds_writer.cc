@@ -15,6 +15,7 @@
 #include "cip/identity_object.h"
 #include "cip/message_router_object.h"
 #include "cip/port_object.h"
+#include "cip/qos_object.h"
 #include "cip/tcpip_interface_object.h"
 #include "drive_link/parameter_table.h"
 
@@ -364,6 +365,7 @@ void WriteTail(Text& out) {
   WriteClass("Ethernet Link Class", "Ethernet Link Object", kEthernetLinkClassRevision, kClassEthernetLink,
              kEthernetLinkInstances, out);
   WriteClass("DLR Class", "Device Level Ring Object", kDlrClassRevision, kClassDlr, 1, out);
+  WriteClass("QoS Class", "QoS Object", kQosClassRevision, kClassQos, 1, out);
 }
 
 }  // namespace

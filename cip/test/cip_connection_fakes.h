@@ -153,6 +153,16 @@ inline Bytes ForwardOpenRequestBytes(const OpenParams& params) {
   return out;
 }
 
+// An input only connection (heartbeat 198) to input 151 (6 bytes), with its own serial number.
+inline OpenParams InputOnly151(std::uint16_t serial) {
+  OpenParams params;
+  params.triad.connection_serial = serial;
+  params.o_to_t.size = 2;
+  params.t_to_o.size = 6;
+  params.path = Hex("20 04 24 01 2C C6 2C 97");
+  return params;
+}
+
 // A class 3 connection to the Message Router at 2 s.
 inline OpenParams ExplicitParams() {
   OpenParams params;
@@ -228,6 +238,7 @@ struct ConnectionCard {
     IoDatagram datagram;
     if (!cm.TakeDueProduction(now, datagram)) return {};
     last_to = datagram.to;
+    last_priority = datagram.priority;
     return Of(datagram.bytes);
   }
 
@@ -241,6 +252,7 @@ struct ConnectionCard {
   base::Ipv4Address originator = kOriginator;  // the IP address requests come from
   hal::Micros now = 1000000;
   Ipv4Endpoint last_to;
+  ConnectionPriority last_priority = ConnectionPriority::kLow;
 };
 
 }  // namespace cip::test

@@ -388,7 +388,7 @@ TEST(EdsWriter, SectionsInOrder) {
   for (const std::string_view name : {"[File]", "[Device]", "[Device Classification]", "[Params]", "[Groups]",
                                       "[Assembly]", "[Connection Manager]", "[Port]", "[Capacity]",
                                       "[Identity Class]", "[TCP/IP Interface Class]", "[Ethernet Link Class]",
-                                      "[DLR Class]"}) {
+                                      "[DLR Class]", "[QoS Class]"}) {
     const std::size_t found = text.find("\n" + std::string(name) + "\n", at);
     ASSERT_NE(found, std::string::npos) << name;
     at = found + 1;
@@ -397,6 +397,9 @@ TEST(EdsWriter, SectionsInOrder) {
   EXPECT_NE(text.find("\n    TSpec1 = TxRx, 18, 1000;\n"), std::string::npos);
   EXPECT_NE(text.find("\n[DLR Class]\n    Revision = 3;\n    Object_Name = \"Device Level Ring Object\";\n"
                       "    Object_Class_Code = 0x47;\n    MaxInst = 1;\n"),
+            std::string::npos);
+  EXPECT_NE(text.find("\n[QoS Class]\n    Revision = 1;\n    Object_Name = \"QoS Object\";\n    Object_Class_Code = 0x48;\n"
+                      "    MaxInst = 1;\n    Number_Of_Static_Instances = 1;\n    Max_Number_Of_Dynamic_Instances = 0;\n"),
             std::string::npos);
   EXPECT_EQ(text.back(), '\n');
 }

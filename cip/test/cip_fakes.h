@@ -77,6 +77,22 @@ class FakeLinks final : public EthernetLinkProvider {
   base::Status store_result;
 };
 
+// The QoS object's store (not part of FakeCard: a test registers a QosObject on it).
+class FakeQos final : public QosProvider {
+ public:
+  QosSettings StoredQos() const override { return stored; }
+  base::Status StoreQos(const QosSettings& settings) override {
+    if (!store_result.ok()) return store_result;
+    stored = settings;
+    ++stores;
+    return base::OkStatus();
+  }
+
+  QosSettings stored;
+  base::Status store_result;
+  int stores = 0;
+};
+
 class FakeReset final : public hal::ResetControl {
  public:
   void RequestReset(hal::ResetKind kind) override { requests.push_back(kind); }

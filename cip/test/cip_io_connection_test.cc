@@ -212,12 +212,8 @@ TEST_F(CipIoConnectionTest, ProducesToTheRequestedPortAndToMulticast) {
   EXPECT_EQ(card_.last_to, (Ipv4Endpoint{test::kOriginator, 2300}));
 
   // Multicast: one datagram per API for all the connections sharing it.
-  OpenParams input;
-  input.triad.connection_serial = 2;
-  input.o_to_t.size = 2;
-  input.t_to_o.size = 6;
+  OpenParams input = test::InputOnly151(2);
   input.t_to_o.type = ConnectionType::kMulticast;
-  input.path = Hex("20 04 24 01 2C C6 2C 97");
   ASSERT_EQ(card_.Open(input)[2], 0x00);
   input.triad.connection_serial = 3;
   input.path = Hex("20 04 24 01 2C C7 2C 97");
@@ -225,6 +221,21 @@ TEST_F(CipIoConnectionTest, ProducesToTheRequestedPortAndToMulticast) {
   EXPECT_EQ(card_.Take(), Hex("02 00 | 02 80 08 00 46 35 24 13 01 00 00 00 | B1 00 06 00 01 00 97 98 99 9A"));
   EXPECT_EQ(card_.last_to, (Ipv4Endpoint{base::Ipv4Address(0xEFC00120), 2222}));
   EXPECT_TRUE(card_.Take().empty());
+}
+
+TEST_F(CipIoConnectionTest, ProductionsCarryTheTtoOPriorityOfTheirForwardOpen) {
+  OpenParams params;
+  params.t_to_o.priority = ConnectionPriority::kUrgent;
+  params.o_to_t.priority = ConnectionPriority::kLow;  // the O->T direction is the originator's
+  ASSERT_EQ(card_.Open(params)[2], 0x00);
+  ASSERT_FALSE(card_.Take().empty());
+  EXPECT_EQ(card_.last_priority, ConnectionPriority::kUrgent);
+
+  OpenParams high = test::InputOnly151(2);
+  high.t_to_o.priority = ConnectionPriority::kHigh;
+  ASSERT_EQ(card_.Open(high)[2], 0x00);
+  ASSERT_FALSE(card_.Take().empty());
+  EXPECT_EQ(card_.last_priority, ConnectionPriority::kHigh);
 }
 
 TEST_F(CipIoConnectionTest, HeartbeatConnectionsFeedTheirWatchdogWithoutData) {

@@ -121,6 +121,7 @@ std::optional<hal::ResetKind> Card::RunOnce() {
         // Identity Reset type 1: the card's own settings go back to the out-of-box defaults. The
         // factory data (MAC) stays; the configuration in the inverter (c-parameters) is the drive's.
         store_.Erase(kNvTcpIpExtras).IgnoreError();
+        store_.Erase(kNvQos).IgnoreError();
       }
       return reset_.pending();
     }

@@ -60,6 +60,33 @@ class IoServiceTest : public test::LwipPairTest {
   IoService service_{card_.cm, clock(), ttl_};
 };
 
+TEST_F(IoServiceTest, ProductionsCarryTheDscpOfTheirPriority) {
+  UdpTestPeer& peer = OpenUdp(kPeerPort);
+  ASSERT_EQ(Open().at(2), 0x00);  // T->O priority scheduled
+  Pump();
+  ASSERT_EQ(peer.received.size(), 1U);
+  EXPECT_EQ(peer.received[0].tos, 0x00);  // no QoS values given: unmarked
+
+  cip::QosSettings qos;
+  service_.set_qos(&qos);
+  clock().Advance(10000);
+  Pump();
+  ASSERT_EQ(peer.received.size(), 2U);
+  EXPECT_EQ(peer.received[1].tos, 47 << 2);  // DSCP Scheduled, default 47
+
+  qos.values[static_cast<std::size_t>(cip::QosAttribute::kDscpScheduled) - 1] = 20;
+  OpenParams urgent = cip::test::InputOnly151(2);
+  urgent.t_to_o.priority = cip::ConnectionPriority::kUrgent;
+  ASSERT_EQ(Open(urgent).at(2), 0x00);
+  Pump();
+  ASSERT_EQ(peer.received.size(), 3U);
+  EXPECT_EQ(peer.received[2].tos, 55 << 2);  // DSCP Urgent
+  clock().Advance(10000);
+  Pump();
+  ASSERT_GE(peer.received.size(), 4U);
+  EXPECT_EQ(peer.received[3].tos, 20 << 2);  // the scheduled connection with the new value
+}
+
 TEST_F(IoServiceTest, OutputDatagramsReachTheManagerAndProductionsTheOriginator) {
   UdpTestPeer& peer = OpenUdp(kPeerPort);
   const Bytes reply = Open();

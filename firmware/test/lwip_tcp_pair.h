@@ -13,7 +13,9 @@
 
 #include "card_netif.h"
 #include "fake_frame_port.h"
+#include "lwip/ip.h"
 #include "lwip/priv/tcp_priv.h"
+#include "lwip/prot/ip4.h"
 #include "lwip/tcp.h"
 #include "lwip/udp.h"
 #include "lwip_fixture.h"
@@ -74,6 +76,7 @@ struct UdpTestPeer {
   struct Datagram {
     Bytes bytes;
     std::uint16_t from_port = 0;
+    std::uint8_t tos = 0;  // of the IP header it came in
   };
   udp_pcb* pcb = nullptr;
   std::vector<Datagram> received;
@@ -82,7 +85,7 @@ struct UdpTestPeer {
     auto* self = static_cast<UdpTestPeer*>(arg);
     Bytes bytes(p->tot_len);
     pbuf_copy_partial(p, bytes.data(), p->tot_len, 0);
-    self->received.push_back({std::move(bytes), port});
+    self->received.push_back({std::move(bytes), port, IPH_TOS(ip4_current_header())});
     pbuf_free(p);
   }
 };

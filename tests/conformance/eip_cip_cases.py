@@ -138,7 +138,7 @@ def rows_path():
 def rows_class_instance_attribute():
     c, i, a = "class unknown (0x05)", "instance unknown (0x16)", "attribute unknown (0x14)"
     out = []
-    for class_id in (0x00, 0x03, 0x05, 0x07, 0x38, 0x48, 0x70, 0xFF, 0x0300, 0xFFFF):
+    for class_id in (0x00, 0x03, 0x05, 0x07, 0x38, 0x43, 0x70, 0xFF, 0x0300, 0xFFFF):
         out.append((c, f"class 0x{class_id:02X}", get(class_id, 1, 1), status(GET, 0x05)))
     out.append((c, "Set on class 0x70 (the class is judged before the service)", set_(0x70, 1, 1, "00"),
                 status(SET, 0x05)))
@@ -148,7 +148,8 @@ def rows_class_instance_attribute():
                                      (ASSEMBLY, 103, "Assembly 103"), (ASSEMBLY, 0xFFFF, "Assembly 0xFFFF"),
                                      (CM, 2, "Connection Manager 2"), (PORT, 2, "Port 2"), (TCPIP, 2, "TCP/IP 2"),
                                      (LINK, 3, "Ethernet Link 3"), (MOTOR, 2, "Motor Data 2"),
-                                     (SUPERVISOR, 2, "Control Supervisor 2"), (DRIVE, 2, "AC/DC Drive 2")):
+                                     (SUPERVISOR, 2, "Control Supervisor 2"), (DRIVE, 2, "AC/DC Drive 2"),
+                                     (0x48, 2, "QoS 2")):
         out.append((i, what, get(class_id, instance, 1), status(GET, 0x16)))
     out += [
         (i, "Set on Identity 2 (the instance is judged before the service)", set_(IDENTITY, 2, 1, "00"),

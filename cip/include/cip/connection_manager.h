@@ -180,6 +180,7 @@ class ConnectionManager final : public AttributeHandler,
     std::uint32_t connection_id = 0;
     Ipv4Endpoint to;
     bool multicast = false;
+    ConnectionPriority priority = ConnectionPriority::kLow;  // T->O: the DSCP of the productions
     std::size_t multicast_index = 0;
     std::uint32_t api = 0;
     std::uint16_t size = 0;

@@ -162,6 +162,7 @@ class ConnectionTable {
 struct IoDatagram {
   Ipv4Endpoint to;  // the originator (point-to-point) or the multicast group, port 2222 unless asked
   bool multicast = false;
+  ConnectionPriority priority = ConnectionPriority::kLow;  // of the T->O parameters: the DSCP it is sent with
   std::span<const std::uint8_t> bytes;  // valid until the next TakeDueProduction
 };
 

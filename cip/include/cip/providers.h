@@ -1,6 +1,7 @@
 // What the CIP objects need from the rest of the card, as small interfaces the firmware implements:
 // identity data and device status, the TCP/IP configuration (live and stored), the two Ethernet ports,
-// and the number of open CIP connections. A reset request goes to hal::ResetControl directly.
+// the stored QoS values and the number of open CIP connections. A reset request goes to
+// hal::ResetControl directly.
 //
 // Stored settings take effect at the next reset, as every (*3) parameter of the manual (§3.1, §3.2.2):
 // a Set_Attribute_Single stores, a Get of a setting reads the stored value back, and the live values
@@ -8,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "base/status.h"
@@ -179,6 +181,38 @@ class EthernetLinkProvider {
   virtual LinkSetting StoredSetting() const = 0;
   // kInvalidArgument -> 0x09, other failures -> 0x19, as TcpIpProvider::StoreSettings.
   virtual base::Status StoreSetting(LinkSetting setting) = 0;
+};
+
+// ---- QoS (CIP Vol. 2 §5-7) -------------------------------------------------------------------------
+
+// The QoS object's instance attributes, in attribute order.
+enum class QosAttribute : std::uint8_t {
+  kTagEnable = 1,
+  kDscpPtpEvent,
+  kDscpPtpGeneral,
+  kDscpUrgent,
+  kDscpScheduled,
+  kDscpHigh,
+  kDscpLow,
+  kDscpExplicit,
+};
+inline constexpr std::size_t kQosAttributes = 8;
+
+// The values of attributes 1-8 (the defaults of the CIP specification).
+struct QosSettings {
+  std::array<std::uint8_t, kQosAttributes> values{0, 59, 47, 55, 47, 43, 31, 27};
+
+  std::uint8_t operator[](QosAttribute attribute) const { return values[static_cast<std::size_t>(attribute) - 1]; }
+  bool tag_enabled() const { return (*this)[QosAttribute::kTagEnable] != 0; }
+  bool operator==(const QosSettings&) const = default;
+};
+
+class QosProvider {
+ public:
+  virtual ~QosProvider() = default;
+  virtual QosSettings StoredQos() const = 0;
+  // kInvalidArgument -> 0x09, other failures -> 0x19, as TcpIpProvider::StoreSettings.
+  virtual base::Status StoreQos(const QosSettings& settings) = 0;
 };
 
 // ---- Message Router (§4.2) -------------------------------------------------------------------------

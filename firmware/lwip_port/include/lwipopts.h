@@ -281,6 +281,13 @@
  * addresses of arbitrary IP packets (harder to poison). */
 #define ETHARP_TRUST_IP_MAC 0
 
+/* ETHARP_SUPPORT_VLAN: 1 = ethernet_input takes 802.1Q-tagged frames, as LWIP_HOOK_VLAN_CHECK
+ * (lwip_hooks.h) allows: priority-tagged IPv4 only (VLAN ID 0), what a peer whose QoS object has
+ * 802.1Q tagging on sends (docs/network.md "QoS (DSCP)"). Other VLANs and tagged ARP are dropped (ARP
+ * must pass the ArpGuard untagged). The card's own tags are inserted by the netif, not by lwIP: without
+ * LWIP_HOOK_VLAN_SET, PBUF_LINK_HLEN stays 14. */
+#define ETHARP_SUPPORT_VLAN 1
+
 /* ================================================================================================
  * IPv4, ICMP, IGMP, DHCP
  * ================================================================================================
