@@ -21,8 +21,8 @@ the bridge's learning flushed), and Flush_Tables tells the card to forget where 
       between T->O datagrams at the PLC is reported and bounded;
   (e) a Sign_On from port 1 comes back on port 2 with the card's MAC and IP appended;
   (f) with DLR_PHASE=flood, only this (and without a capture, which would slow the card down): a flood of
-      ring frames at line rate (malformed ones, Neighbor_Check requests, Locate_Fault, a second
-      supervisor's beacons, Flush_Tables) does not starve class 1 production.
+      ring frames at line rate into port R (malformed ones, Neighbor_Check requests, Locate_Fault, a second
+      supervisor's beacons, Flush_Tables) does not starve class 1 production on port L.
 The beacon interval is an argument (default 2 ms, timeout 4 intervals): the scripted supervisor is a
 Python thread; docs/network.md says what this machine's timers allow.
 """
@@ -283,8 +283,17 @@ def run(ctl, sup):
        f"{status.body[0]:02x} to the supervisor")
 
 
+def card_cpu_seconds():
+    fields = open(f"/proc/{os.environ['CARD_PID']}/stat").read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")  # utime + stime
+
+
 def flood(ctl, sup):
-    """(f) Ring frames at line rate into port 1 while a class 1 connection runs: production unharmed.
+    """(f) Ring frames at line rate into port 2 while a class 1 connection runs: production unharmed.
+
+    The flood comes in on port R, the far side of the ring (a faulty node there), while the PLC's I/O
+    comes in on port L: a line-rate flood on the PLC's own 100 Mbit/s link would leave no room on that
+    wire for its datagrams at all, on a real ring as on the TAP (whose one queue would drop them).
 
     The supervisor's beacons share the TAP's one queue with the flood (a switch chip would queue them by
     their priority 7 tag), so the ring may be seen to fail and recover many times meanwhile (printed): the
@@ -293,7 +302,8 @@ def flood(ctl, sup):
     timeout_us = rpi * 4 << multiplier
     seconds = float(os.environ.get("DLR_FLOOD_SECONDS", "5"))
     keys = ("cip.missed_productions", "cip.connection_timeouts", "dlr.frames_in", "dlr.malformed",
-            "dlr.neighbor_checks_answered", "dlr.transmit_dropped", "dlr.ring_faults")
+            "dlr.neighbor_checks_answered", "dlr.transmit_dropped", "dlr.ring_faults", "io.received",
+            "netif.rx_dropped_no_pbuf", "port.L.rx_errors", "port.R.rx_errors", "loop.bounded_passes")
     with Client(CARD_IP) as client, IoEndpoint(CARD_IP) as ep:
         client.register_session()
         triad, path, t_o_id = Triad(0x2202), io_path(21, 71), 0x22000002
@@ -308,9 +318,16 @@ def flood(ctl, sup):
         transitions = len(sup.transitions)
         sup.hold_ports = True
         start = ep.count(t_o_id)
-        run = subprocess.run([sys.executable, dlr.__file__, "flood", TAP_L, str(seconds), "140000"],
-                             capture_output=True, text=True, timeout=seconds + 30)
+        sent_before, errors_before = conn.sent, ep.send_errors
+        cpu = card_cpu_seconds()
+        # The flood at normal priority (this process may run SCHED_FIFO, which a child would inherit and
+        # then, spinning, keep the PLC's sending thread off its CPU).
+        run = subprocess.run([sys.executable, dlr.__file__, "flood", TAP_R, str(seconds), "140000"],
+                             capture_output=True, text=True, timeout=seconds + 30,
+                             preexec_fn=lambda: os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0)))
         received = ep.since(t_o_id, start)
+        cpu = card_cpu_seconds() - cpu
+        o_t_sent, o_t_errors = conn.sent - sent_before, ep.send_errors - errors_before
         after = {k: int(stats(ctl)[k]) for k in keys}
         flaps = len(sup.transitions) - transitions
         sup.hold_ports = False
@@ -322,7 +339,8 @@ def flood(ctl, sup):
     print("   " + run.stdout.strip(), flush=True)
     delta = {k: after[k] - before[k] for k in keys}
     print("   card during the flood: " + ", ".join(f"{k} +{v}" for k, v in delta.items()) +
-          f"; supervisor state changes {flaps}", flush=True)
+          f"; supervisor state changes {flaps}; card CPU {cpu:.1f} s in {seconds:.0f} s; O->T sent {o_t_sent} "
+          f"(send errors {o_t_errors})", flush=True)
     _, st = interval_stats(received)
     if st["n"] < 0.9 * seconds * 1e6 / rpi:
         fail(f"only {st['n']} T->O intervals in {seconds} s")
