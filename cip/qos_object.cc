@@ -44,8 +44,12 @@ constexpr std::array<TaggedClass, 7> kTaggedClasses = {{
     {QosAttribute::kDscpExplicit, 3},
 }};
 
-std::uint16_t U16Be(std::span<const std::uint8_t> bytes, std::size_t at) {
-  return static_cast<std::uint16_t>(bytes[at] << 8 | bytes[at + 1]);
+// The EtherType of a frame of `length` bytes in `buffer` (0 when it has none).
+std::uint16_t EtherType(std::span<const std::uint8_t> buffer, std::size_t length) {
+  base::ByteReader in(buffer.first(std::min(length, buffer.size())));
+  in.Skip(kMacAddressesBytes);
+  const std::uint16_t type = in.U16Be();
+  return in.ok() ? type : 0;
 }
 
 }  // namespace
@@ -93,7 +97,7 @@ int PriorityOfDscp(const QosSettings& settings, std::uint8_t dscp) {
 
 std::size_t InsertPriorityTag(const QosSettings& settings, std::span<std::uint8_t> buffer, std::size_t length) {
   if (!settings.tag_enabled() || length > buffer.size() || length <= kIpv4TosOffset ||
-      buffer.size() - length < kVlanTagBytes || U16Be(buffer, kMacAddressesBytes) != kEtherTypeIpv4) {
+      buffer.size() - length < kVlanTagBytes || EtherType(buffer, length) != kEtherTypeIpv4) {
     return length;
   }
   const int priority = PriorityOfDscp(settings, static_cast<std::uint8_t>(buffer[kIpv4TosOffset] >> 2));

@@ -36,6 +36,9 @@ void CardLldp::Poll(hal::Micros now) {
 }
 
 bool CardLldp::TakeFrame(hal::PortId port, std::span<const std::uint8_t> frame) {
+  // Every frame for the card passes here (each O->T datagram, each Modbus request): the two-field test
+  // first, not the clock and a parse into a 150-byte neighbour record.
+  if (!net::IsLldpFrame(frame)) return false;
   return agent_.OnFrame(hal::PortIndex(port), frame, clock_.NowMicros());
 }
 

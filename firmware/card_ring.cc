@@ -14,17 +14,7 @@ hal::PortId PortOf(std::size_t ring_port) { return ring_port == 0 ? hal::PortId:
 CardRing::CardRing(CardNetif& netif, const hal::Clock& clock)
     : netif_(netif), clock_(clock), node_(netif.port().Mac()) {}
 
-bool CardRing::Claims(std::span<const std::uint8_t> frame) const {
-  // The EtherType after the addresses, or after one 802.1Q tag (DLR frames are priority-tagged).
-  base::ByteReader reader(frame);
-  reader.Skip(2 * base::MacAddress::kSize);
-  std::uint16_t type = reader.U16Be();
-  if (type == net::kVlanTagType) {
-    reader.Skip(2);
-    type = reader.U16Be();
-  }
-  return reader.ok() && type == net::kDlrEtherType;
-}
+bool CardRing::Claims(std::span<const std::uint8_t> frame) const { return net::IsDlrFrame(frame); }
 
 bool CardRing::OnFrame(std::span<const std::uint8_t> frame, hal::PortId port) {
   const hal::Micros now = clock_.NowMicros();

@@ -112,9 +112,10 @@ DlrLinkStatus DlrLinkStatus::Decode(std::uint8_t byte) {
   return {(byte & kStatusPort1) != 0, (byte & kStatusPort2) != 0, (byte & kStatusNeighbor) != 0};
 }
 
-base::Result<DlrFrame> ParseDlrFrame(std::span<const std::uint8_t> bytes) {
-  base::ByteReader in(bytes);
-  DlrFrame frame;
+namespace {
+
+// Reads the addresses, one 802.1Q tag if there is one, and the EtherType; true for a DLR frame.
+bool ReadDlrEthernetHeader(base::ByteReader& in, DlrFrame& frame) {
   frame.destination = base::MacAddress::Read(in);
   frame.source = base::MacAddress::Read(in);
   std::uint16_t ether_type = in.U16Be();
@@ -123,7 +124,21 @@ base::Result<DlrFrame> ParseDlrFrame(std::span<const std::uint8_t> bytes) {
     frame.tag_control = in.U16Be();
     ether_type = in.U16Be();
   }
-  if (!in.ok() || ether_type != kDlrEtherType) return base::NotFound();
+  return in.ok() && ether_type == kDlrEtherType;
+}
+
+}  // namespace
+
+bool IsDlrFrame(std::span<const std::uint8_t> bytes) {
+  base::ByteReader in(bytes);
+  DlrFrame header;
+  return ReadDlrEthernetHeader(in, header);
+}
+
+base::Result<DlrFrame> ParseDlrFrame(std::span<const std::uint8_t> bytes) {
+  base::ByteReader in(bytes);
+  DlrFrame frame;
+  if (!ReadDlrEthernetHeader(in, frame)) return base::NotFound();
   frame.pdu_offset = in.position();
 
   const std::uint8_t subtype = in.U8();

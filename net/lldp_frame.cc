@@ -100,14 +100,18 @@ base::Result<std::size_t> BuildLldpFrame(const LldpAdvert& advert, std::span<std
   return writer.Finish();
 }
 
-base::Result<LldpNeighbourInfo> ParseLldpFrame(std::span<const std::uint8_t> frame) {
+bool IsLldpFrame(std::span<const std::uint8_t> frame) {
   base::ByteReader reader(frame);
   const base::MacAddress destination = base::MacAddress::Read(reader);
   reader.Skip(base::MacAddress::kSize);
   const std::uint16_t ether_type = reader.U16Be();
-  if (!reader.ok() || destination != kLldpNearestBridge || ether_type != kEtherTypeLldp) {
-    return base::NotFound();
-  }
+  return reader.ok() && destination == kLldpNearestBridge && ether_type == kEtherTypeLldp;
+}
+
+base::Result<LldpNeighbourInfo> ParseLldpFrame(std::span<const std::uint8_t> frame) {
+  if (!IsLldpFrame(frame)) return base::NotFound();
+  base::ByteReader reader(frame);
+  reader.Skip(2 * base::MacAddress::kSize + 2);
 
   LldpNeighbourInfo info;
   bool have_name = false;

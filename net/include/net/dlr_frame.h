@@ -110,6 +110,9 @@ struct DlrFrame {
 // header). kOutOfRange: shorter than its frame type's fields (a Sign_On whose node count does not fit).
 // kInvalidArgument: wrong subtype or version, unknown frame type, a ring state other than 1/2.
 base::Result<DlrFrame> ParseDlrFrame(std::span<const std::uint8_t> frame);
+// Whether `frame` carries EtherType 0x80E1, after the addresses or after one 802.1Q tag: the cheap test
+// of the card's receive path (ParseDlrFrame answers kNotFound for exactly the other frames).
+bool IsDlrFrame(std::span<const std::uint8_t> frame);
 
 // The MAC/IP entry `index` (< sign_on_nodes) of a Sign_On that ParseDlrFrame accepted.
 struct DlrNode {

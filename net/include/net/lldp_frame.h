@@ -87,5 +87,8 @@ struct LldpNeighbourInfo {
 // without an End TLV is accepted (the frame's end ends the list). Only the first instance of an optional
 // TLV counts; unknown TLVs are skipped by their length.
 base::Result<LldpNeighbourInfo> ParseLldpFrame(std::span<const std::uint8_t> frame);
+// Whether `frame` is LLDP to the nearest-bridge address (ParseLldpFrame answers kNotFound for exactly
+// the other frames): the cheap test for every frame the card receives.
+bool IsLldpFrame(std::span<const std::uint8_t> frame);
 
 }  // namespace net
