@@ -7,8 +7,10 @@ test needs:
 
 - sends a Beacon out of each of its two ports every `interval_us` (ring state, precedence, interval and
   timeout in the frame), with its own sequence ids;
-- watches its own beacons come back on the other port: both directions seen within the beacon timeout =
-  ring NORMAL, otherwise FAULT. A Link_Status from a node is a fault at once (the fast path);
+- watches its own beacons come back on the other port: a beacon not back within the beacon timeout of
+  being sent = ring FAULT; beacons sent since the fault back in both directions = NORMAL. Judged by send
+  times and after reading what has arrived, so a supervisor thread the host kept waiting does not see a
+  fault that is not there. A Link_Status from a node is a fault at once (the fast path);
 - on every change of state calls `on_state(state)` (the test blocks or unblocks its second port for
   ordinary traffic there) and sends Flush_Tables (learning update enabled) out of both ports;
 - answers the Neighbor_Check requests of its neighbours on the port they came in on (unless told not to,
@@ -179,7 +181,12 @@ class RingSupervisor:
         self.max_beacon_gap_us = 0  # the longest time between two beacons out of port 1 (send jitter)
         self.actions = 0
         self._sequence = 1
-        self._last_back_ns = [0, 0]
+        # Beacon rounds sent (send time, sequence out of port 1, out of port 2), newest last: bounded, a
+        # timeout's worth and more at any interval a test uses.
+        self._rounds = collections.deque(maxlen=1024)
+        self._sent_ns = {}            # beacon sequence -> its round's send time, for the rounds above
+        self._back_sent_ns = [0, 0]   # send time of the newest own beacon back in on port i
+        self._fault_ns = 0            # when the ring last went to FAULT
         self._lock = threading.Lock()
         self._stop = threading.Event()
         self._sockets = []
@@ -265,9 +272,10 @@ class RingSupervisor:
         if state == self.state:
             return
         self.state = state
+        now = time.monotonic_ns()
         if state == RING_FAULT:
-            self._last_back_ns = [0, 0]  # the ring closes again only with beacons that came round since
-        self.transitions.append((time.monotonic_ns(), state, reason))
+            self._fault_ns = now  # the ring closes again only with beacons sent since
+        self.transitions.append((now, state, reason))
         self._actions.put(state)
 
     def _act(self):
@@ -283,11 +291,20 @@ class RingSupervisor:
     def _send_beacons(self):
         state = RING_FAULT if self.announce_fault else self.state
         fields = beacon_fields(state, self.precedence, self.interval_us, self.timeout_us)
+        now = time.monotonic_ns()
+        sequences = []
         for port in (0, 1):
             try:
-                self.send(port, BEACON_MAC, BEACON, fields)
+                sequences.append(self.send(port, BEACON_MAC, BEACON, fields))
             except OSError:
-                pass  # a port without carrier: the beacon is lost, as on a cut cable
+                sequences.append(None)  # a port without carrier: the beacon is lost, as on a cut cable
+        if len(self._rounds) == self._rounds.maxlen:
+            for old in self._rounds[0][1:]:
+                self._sent_ns.pop(old, None)
+        self._rounds.append((now, *sequences))
+        for sequence in sequences:
+            if sequence is not None:
+                self._sent_ns[sequence] = now
         self.beacons_sent += 1
 
     def _receive(self, port):
@@ -312,7 +329,9 @@ class RingSupervisor:
                     self.foreign_beacons += 1
                 elif frame.source_port == (2 if port == 0 else 1):
                     self.beacons_back[port] += 1
-                    self._last_back_ns[port] = time.monotonic_ns()
+                    sent = self._sent_ns.get(frame.sequence)
+                    if sent is not None:
+                        self._back_sent_ns[port] = max(self._back_sent_ns[port], sent)
                 continue
             if frame.source == self.mac:
                 continue  # our own Flush_Tables etc. forwarded round the ring
@@ -327,13 +346,15 @@ class RingSupervisor:
                 self._set_state(RING_FAULT, f"link_status from {mac_text(frame.source)} on {port}")
 
     def _evaluate(self):
-        now = time.monotonic_ns()
-        timeout_ns = self.timeout_us * 1000
-        both_back = all(now - t <= timeout_ns for t in self._last_back_ns)
-        if both_back and self.state == RING_FAULT:
-            self._set_state(RING_NORMAL, "own beacons back on both ports")
-        elif not both_back and self.state == RING_NORMAL:
+        """Ring state from the beacons: called after the sockets have been read."""
+        deadline = time.monotonic_ns() - self.timeout_us * 1000
+        # The newest round sent a whole timeout ago: its beacons (or later ones) must be back by now.
+        due = next((r[0] for r in reversed(self._rounds) if r[0] <= deadline), None)
+        overdue = due is not None and any(t < due for t in self._back_sent_ns)
+        if self.state == RING_NORMAL and overdue:
             self._set_state(RING_FAULT, "beacon timeout")
+        elif self.state == RING_FAULT and not overdue and all(t > self._fault_ns for t in self._back_sent_ns):
+            self._set_state(RING_NORMAL, "own beacons back on both ports")
 
     def _run(self):
         interval_ns = self.interval_us * 1000
@@ -342,6 +363,10 @@ class RingSupervisor:
         while not self._stop.is_set():
             now = time.monotonic_ns()
             if now >= next_beacon:
+                # What came back while this thread waited counts before the ring is judged.
+                for port in (0, 1):
+                    self._receive(port)
+                self._evaluate()
                 if last_beacon is not None:
                     self.max_beacon_gap_us = max(self.max_beacon_gap_us, (now - last_beacon) // 1000)
                 last_beacon = now
@@ -349,7 +374,6 @@ class RingSupervisor:
                 next_beacon += interval_ns
                 if next_beacon < now:  # fell behind (a slow pass): no burst of beacons to catch up
                     next_beacon = now + interval_ns
-                self._evaluate()
             wait = max(0, next_beacon - time.monotonic_ns()) / 1e9
             readable, _, _ = select.select(self._sockets, [], [], wait)
             for s in readable:
