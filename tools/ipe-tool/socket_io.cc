@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 
 #include "failure.h"
@@ -19,6 +20,19 @@ namespace ipe {
 namespace {
 
 std::string ErrnoText(int error) { return std::strerror(error); }
+
+// poll() on one descriptor for at most timeout_ms in all. A signal that interrupts the wait (Ctrl-C while
+// a request is out: the command finishes the request, then sees Interrupted()) waits on for the rest of
+// the time instead of ending the command as an unreachable card. > 0 ready, 0 timed out, < 0 error.
+int PollWithin(int fd, short events, int timeout_ms) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd p{fd, events, 0};
+    const int ready = poll(&p, 1, left.count() > 0 ? static_cast<int>(left.count()) : 0);
+    if (ready >= 0 || errno != EINTR) return ready;
+  }
+}
 
 }  // namespace
 
@@ -54,8 +68,7 @@ TcpConnection::TcpConnection(const std::string& host, std::uint16_t port, int ti
   if (connect(fd_, reinterpret_cast<const sockaddr*>(&to), sizeof to) != 0 && errno != EINPROGRESS) {
     Fail(kExitUnreachable, name_ + ": " + ErrnoText(errno));
   }
-  pollfd p{fd_, POLLOUT, 0};
-  const int ready = poll(&p, 1, timeout_ms_);
+  const int ready = PollWithin(fd_, POLLOUT, timeout_ms_);
   if (ready == 0) Fail(kExitUnreachable, name_ + ": no answer within " + std::to_string(timeout_ms_) + " ms");
   int error = 0;
   socklen_t length = sizeof error;
@@ -74,8 +87,7 @@ void TcpConnection::Send(std::span<const std::uint8_t> bytes) {
   while (sent < bytes.size()) {
     const ssize_t n = send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
     if (n < 0 && (errno == EAGAIN || errno == EINTR)) {
-      pollfd p{fd_, POLLOUT, 0};
-      if (poll(&p, 1, timeout_ms_) <= 0) Fail(kExitUnreachable, name_ + ": send timed out");
+      if (PollWithin(fd_, POLLOUT, timeout_ms_) <= 0) Fail(kExitUnreachable, name_ + ": send timed out");
       continue;
     }
     if (n <= 0) Fail(kExitUnreachable, name_ + ": " + ErrnoText(errno));
@@ -84,8 +96,7 @@ void TcpConnection::Send(std::span<const std::uint8_t> bytes) {
 }
 
 void TcpConnection::WaitReadable() {
-  pollfd p{fd_, POLLIN, 0};
-  const int ready = poll(&p, 1, timeout_ms_);
+  const int ready = PollWithin(fd_, POLLIN, timeout_ms_);
   if (ready == 0) Fail(kExitUnreachable, name_ + ": no reply within " + std::to_string(timeout_ms_) + " ms");
   if (ready < 0) Fail(kExitUnreachable, name_ + ": " + ErrnoText(errno));
 }
@@ -151,8 +162,7 @@ void UdpSocket::SendTo(std::span<const std::uint8_t> bytes, in_addr address, std
 }
 
 bool UdpSocket::ReceiveFrom(std::vector<std::uint8_t>& bytes, sockaddr_in& from, int timeout_ms) {
-  pollfd p{fd_, POLLIN, 0};
-  const int ready = poll(&p, 1, timeout_ms < 0 ? 0 : timeout_ms);
+  const int ready = PollWithin(fd_, POLLIN, timeout_ms < 0 ? 0 : timeout_ms);
   if (ready <= 0) return false;
   bytes.resize(1500);
   socklen_t length = sizeof from;
