@@ -37,6 +37,9 @@ frames() { "$LINE" "unix:$SERIAL" "$@" || fail "cannot talk on the serial line";
 # start [FLAGS...]: runs the inverter in the background until its ready line, then waits out the
 # power-on second (the drive does not communicate before it).
 start() {
+  # Emptied here, not by the background command's redirection: that runs in the child, which may not
+  # have opened the file yet when the wait below reads the previous run's ready line from it.
+  : >"$WORK/out"
   "$INVERTER" --serial "unix:$SERIAL" --sim-control "$CONTROL" --state-dir "$STATE" "$@" \
     >"$WORK/out" 2>"$WORK/err" &
   INV_PID=$!
@@ -176,6 +179,7 @@ stop
 pass "power-cycle: RAM-only FA06 back to 0, the EEPROM kept, the line served again"
 
 # --- TCP ---
+: >"$WORK/out"  # not the child's redirection: see start()
 "$INVERTER" --serial tcp:127.0.0.1:0 --state-dir "$STATE" >"$WORK/out" 2>"$WORK/err" &
 INV_PID=$!
 wait_for 10 grep -q '^inverter-ready ' "$WORK/out" || { cat "$WORK/err" >&2; fail "no ready line (tcp)"; }
