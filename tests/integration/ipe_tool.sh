@@ -21,6 +21,8 @@ run_ipe() {
   timeout 60 "$IPE" "$@" >"$KEEP/out" 2>"$KEEP/err" || rc=$?
   if [ "$rc" != "$expected" ]; then
     echo "--- stdout" >&2; cat "$KEEP/out" >&2; echo "--- stderr" >&2; cat "$KEEP/err" >&2
+    # What the card saw (once, 'no reply within 2000 ms' on a set after the EDS upload, not reproduced).
+    echo "--- card stats" >&2; "$CTL" "$CARD_CONTROL" stats 2>&1 | grep -E 'tcp|eip\.|loop\.' >&2 || true
     fail "ipe $* exited $rc, expected $expected"
   fi
 }
