@@ -75,10 +75,13 @@ class Card:
             self.process.wait(5)
         else:
             deadline = time.monotonic() + 5
-            while os.path.exists(f"/proc/{self.pid}") and time.monotonic() < deadline:
-                with open(f"/proc/{self.pid}/stat") as f:
-                    if f.read().split(") ")[1].startswith("Z"):
-                        break  # a zombie of tools/netns: dead, not reaped yet
+            while time.monotonic() < deadline:
+                try:
+                    with open(f"/proc/{self.pid}/stat") as f:
+                        if f.read().split(") ")[1].startswith("Z"):
+                            break  # a zombie of tools/netns: dead, not reaped yet
+                except FileNotFoundError:
+                    break  # reaped by tools/netns (between any check and the open: seen in a full run)
                 time.sleep(0.01)
 
     def start(self):
